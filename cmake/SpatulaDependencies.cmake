@@ -1,0 +1,62 @@
+# Finds the project's dependencies and exposes each as an imported target, so packages name what they use:
+#   Spatula::Teuchos, Spatula::Kokkos, Spatula::Tpetra, Spatula::Solvers (NOX/Thyra/Stratimikos/Belos/Ifpack2/MueLu),
+#   MPI::MPI_CXX, Spatula::HDF5, GTest::gtest_main.
+# Debian's Trilinos 13.2 exports no CMake targets, only <Package>_LIBRARIES / _INCLUDE_DIRS lists.
+include_guard(GLOBAL)
+
+find_package(MPI REQUIRED COMPONENTS C CXX)
+
+set(HDF5_PREFER_PARALLEL ON)
+find_package(HDF5 REQUIRED COMPONENTS C)
+if(NOT HDF5_IS_PARALLEL)
+  message(WARNING "HDF5 found at ${HDF5_INCLUDE_DIRS} is not the parallel (OpenMPI) build")
+endif()
+if(NOT TARGET Spatula::HDF5)
+  add_library(Spatula::HDF5 INTERFACE IMPORTED GLOBAL)
+  set_target_properties(Spatula::HDF5 PROPERTIES
+    INTERFACE_SYSTEM_INCLUDE_DIRECTORIES "${HDF5_C_INCLUDE_DIRS}"
+    INTERFACE_INCLUDE_DIRECTORIES "${HDF5_C_INCLUDE_DIRS}"
+    INTERFACE_LINK_LIBRARIES "${HDF5_C_LIBRARIES};MPI::MPI_C")
+endif()
+
+set(SPATULA_TRILINOS_PACKAGES Teuchos Kokkos Tpetra Thyra Stratimikos NOX Belos Ifpack2 MueLu)
+find_package(Trilinos 13.2 REQUIRED COMPONENTS ${SPATULA_TRILINOS_PACKAGES})
+
+# One imported target per Trilinos package, from that package's own library lists.
+function(spatula_trilinos_target target)
+  if(TARGET Spatula::${target})
+    return()
+  endif()
+  set(libraries)
+  set(includes)
+  foreach(package IN LISTS ARGN)
+    list(APPEND libraries ${${package}_LIBRARIES} ${${package}_TPL_LIBRARIES})
+    list(APPEND includes ${${package}_INCLUDE_DIRS} ${${package}_TPL_INCLUDE_DIRS})
+  endforeach()
+  list(REMOVE_DUPLICATES includes)
+  add_library(Spatula::${target} INTERFACE IMPORTED GLOBAL)
+  set_target_properties(Spatula::${target} PROPERTIES
+    INTERFACE_SYSTEM_INCLUDE_DIRECTORIES "${includes}"
+    INTERFACE_INCLUDE_DIRECTORIES "${includes}"
+    INTERFACE_LINK_LIBRARIES "${libraries};MPI::MPI_CXX")
+endfunction()
+
+spatula_trilinos_target(Teuchos Teuchos)
+spatula_trilinos_target(Kokkos Kokkos Teuchos)
+spatula_trilinos_target(Tpetra Tpetra Kokkos Teuchos)
+spatula_trilinos_target(Solvers NOX Stratimikos Belos Ifpack2 MueLu Thyra Tpetra Kokkos Teuchos)
+
+# MUMPS (distributed direct solver): Trilinos links it as a TPL; the headers are plain Debian ones.
+find_path(MUMPS_INCLUDE_DIR dmumps_c.h)
+find_library(MUMPS_LIBRARY dmumps)
+find_library(MUMPS_COMMON_LIBRARY mumps_common)
+if(MUMPS_INCLUDE_DIR AND MUMPS_LIBRARY AND NOT TARGET Spatula::MUMPS)
+  add_library(Spatula::MUMPS INTERFACE IMPORTED GLOBAL)
+  set_target_properties(Spatula::MUMPS PROPERTIES
+    INTERFACE_INCLUDE_DIRECTORIES "${MUMPS_INCLUDE_DIR}"
+    INTERFACE_LINK_LIBRARIES "${MUMPS_LIBRARY};${MUMPS_COMMON_LIBRARY};MPI::MPI_C")
+endif()
+
+if(SPATULA_ENABLE_TESTS)
+  find_package(GTest REQUIRED)
+endif()

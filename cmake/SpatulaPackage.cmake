@@ -1,0 +1,57 @@
+# spatula_package(<name> SOURCES ... DEPENDS ...)
+#   One library per package: target spatula_<name>, alias Spatula::<name>, headers in packages/<name>/src,
+#   installed under include/spatula. DEPENDS lists the package's dependencies explicitly (PUBLIC).
+# spatula_test(<name> SOURCES ... DEPENDS ... [RANKS n ...])
+#   A GoogleTest executable run by CTest once per rank count (default 1); MPI runs use mpiexec.
+include_guard(GLOBAL)
+
+set(SPATULA_EXPORTED_TARGETS "" CACHE INTERNAL "")
+
+function(spatula_package name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS" ${ARGN})
+  set(target spatula_${name})
+  add_library(${target} ${ARG_SOURCES})
+  add_library(Spatula::${name} ALIAS ${target})
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${name} OUTPUT_NAME spatula_${name})
+  target_include_directories(${target} PUBLIC
+    $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/src>
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/spatula>)
+  target_link_libraries(${target} PUBLIC ${ARG_DEPENDS})
+  target_compile_options(${target} PRIVATE -Wall -Wextra)
+  file(GLOB headers ${CMAKE_CURRENT_SOURCE_DIR}/src/*.hpp)
+  install(FILES ${headers} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/spatula)
+  install(TARGETS ${target} EXPORT SpatulaTargets
+    LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+    ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+endfunction()
+
+function(spatula_test name)
+  if(NOT SPATULA_ENABLE_TESTS)
+    return()
+  endif()
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS;RANKS;LABELS" ${ARGN})
+  if(NOT ARG_RANKS)
+    set(ARG_RANKS 1)
+  endif()
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPENDS} spatula_test_main GTest::gtest)
+  target_compile_options(${name} PRIVATE -Wall -Wextra)
+  foreach(ranks IN LISTS ARG_RANKS)
+    if(ranks EQUAL 1)
+      add_test(NAME ${name} COMMAND ${name})
+      set(test_name ${name})
+    else()
+      set(test_name ${name}_np${ranks})
+      add_test(NAME ${test_name} COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} ${ranks}
+               ${SPATULA_MPIEXEC_FLAGS} $<TARGET_FILE:${name}>)
+    endif()
+    set_tests_properties(${test_name} PROPERTIES PROCESSORS ${ranks}
+      ENVIRONMENT "OMPI_MCA_rmaps_base_oversubscribe=1;OMP_NUM_THREADS=1")
+    if(ARG_LABELS)
+      set_tests_properties(${test_name} PROPERTIES LABELS "${ARG_LABELS}")
+    endif()
+  endforeach()
+endfunction()
+
+# mpiexec as root needs an explicit opt-in with Open MPI; harmless otherwise.
+set(SPATULA_MPIEXEC_FLAGS --allow-run-as-root --oversubscribe CACHE STRING "Extra flags for mpiexec in tests")

@@ -1,0 +1,293 @@
+#include "parameter_validation.hpp"
+
+#include <Teuchos_ParameterEntryValidator.hpp>
+#include <Teuchos_StringInputSource.hpp>
+#include <Teuchos_XMLParameterListReader.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace spatula::parameters {
+
+std::string key_path(const std::string& path, const std::string& name)
+{
+  return path.empty() ? name : path + "/" + name;
+}
+
+namespace {
+
+std::string format_number(double value)
+{
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  std::ostringstream out;
+  out.precision(10);
+  out << value;
+  return out.str();
+}
+
+std::string join(const std::vector<std::string>& words)
+{
+  std::string joined;
+  for (const auto& word : words) joined += (joined.empty() ? "" : ", ") + word;
+  return joined;
+}
+
+// Validator carried by a declared parameter: its type, and a numeric range or a list of allowed strings.
+// The checks themselves happen in `validate` below, which knows the key path for the message.
+class Constraint : public Teuchos::ParameterEntryValidator {
+public:
+  enum class Kind { real, integer, boolean, text };
+
+  Constraint(Kind kind, Range range, std::vector<std::string> allowed)
+      : kind_(kind), range_(range), allowed_(std::move(allowed))
+  {
+  }
+
+  Kind kind() const { return kind_; }
+  const Range& range() const { return range_; }
+  const std::vector<std::string>& allowed() const { return allowed_; }
+
+  std::string type_name() const
+  {
+    switch (kind_) {
+      case Kind::real: return "double";
+      case Kind::integer: return "int";
+      case Kind::boolean: return "bool";
+      case Kind::text: return "string";
+    }
+    return "";
+  }
+
+  std::string describe_allowed() const
+  {
+    if (kind_ == Kind::text) return allowed_.empty() ? "any string" : "one of: " + join(allowed_);
+    if (kind_ == Kind::boolean) return "true or false";
+    return type_name() + " in " + range_.describe();
+  }
+
+  const std::string getXMLTypeName() const override { return "spatula_constraint"; }
+  void printDoc(const std::string& doc, std::ostream& out) const override
+  {
+    out << "# " << doc << " (" << describe_allowed() << ")\n";
+  }
+  ValidStringsList validStringValues() const override
+  {
+    if (allowed_.empty()) return Teuchos::null;
+    return Teuchos::rcp(new Teuchos::Array<std::string>(allowed_.begin(), allowed_.end()));
+  }
+  void validate(const Teuchos::ParameterEntry&, const std::string&, const std::string&) const override {}
+
+private:
+  Kind kind_;
+  Range range_;
+  std::vector<std::string> allowed_;
+};
+
+template <class T>
+void declare(ParameterList& list, const std::string& name, const T& default_value, const std::string& doc,
+             Constraint::Kind kind, Range range, std::vector<std::string> allowed = {})
+{
+  auto constraint = Teuchos::rcp(new Constraint(kind, range, std::move(allowed)));
+  list.set(name, default_value, doc, constraint);
+}
+
+std::string describe_entry(const Teuchos::ParameterEntry& entry)
+{
+  std::ostringstream out;
+  out << entry.getAny(false).typeName() << " '";
+  entry.getAny(false).print(out);
+  out << "'";
+  return out.str();
+}
+
+void check_value(Teuchos::ParameterEntry& entry, const Constraint& constraint, const std::string& key)
+{
+  using Kind = Constraint::Kind;
+  auto wrong_type = [&]() {
+    throw InputError("parameter '" + key + "': expected " + constraint.type_name() + ", got " +
+                     describe_entry(entry) + "; allowed: " + constraint.describe_allowed());
+  };
+  const auto& any = entry.getAny(false);
+  switch (constraint.kind()) {
+    case Kind::real: {
+      double value = 0.0;
+      if (any.type() == typeid(double)) value = Teuchos::any_cast<double>(any);
+      else if (any.type() == typeid(int)) value = Teuchos::any_cast<int>(any);
+      else wrong_type();
+      if (!std::isfinite(value) || !constraint.range().contains(value))
+        throw InputError("parameter '" + key + "' = " + format_number(value) + " is out of range; allowed: " +
+                         constraint.describe_allowed());
+      entry.setValue(value, entry.isDefault(), entry.docString(), entry.validator());
+      break;
+    }
+    case Kind::integer: {
+      if (any.type() != typeid(int)) wrong_type();
+      const int value = Teuchos::any_cast<int>(any);
+      if (!constraint.range().contains(value))
+        throw InputError("parameter '" + key + "' = " + std::to_string(value) + " is out of range; allowed: " +
+                         constraint.describe_allowed());
+      break;
+    }
+    case Kind::boolean:
+      if (any.type() != typeid(bool)) wrong_type();
+      break;
+    case Kind::text: {
+      if (any.type() != typeid(std::string)) wrong_type();
+      const auto& value = Teuchos::any_cast<std::string>(any);
+      const auto& allowed = constraint.allowed();
+      if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), value) == allowed.end())
+        throw InputError("parameter '" + key + "' = '" + value + "' is not allowed; allowed: " +
+                         constraint.describe_allowed());
+      break;
+    }
+  }
+}
+
+}  // namespace
+
+bool Range::contains(double value) const
+{
+  const bool above = lower_open ? value > lower : value >= lower;
+  const bool below = upper_open ? value < upper : value <= upper;
+  return above && below;
+}
+
+std::string Range::describe() const
+{
+  return std::string(lower_open || std::isinf(lower) ? "(" : "[") + format_number(lower) + ", " +
+         format_number(upper) + (upper_open || std::isinf(upper) ? ")" : "]");
+}
+
+void declare_double(ParameterList& list, const std::string& name, double default_value, const std::string& doc,
+                    Range range)
+{
+  declare(list, name, default_value, doc, Constraint::Kind::real, range);
+}
+
+void declare_int(ParameterList& list, const std::string& name, int default_value, const std::string& doc,
+                 Range range)
+{
+  declare(list, name, default_value, doc, Constraint::Kind::integer, range);
+}
+
+void declare_bool(ParameterList& list, const std::string& name, bool default_value, const std::string& doc)
+{
+  declare(list, name, default_value, doc, Constraint::Kind::boolean, {});
+}
+
+void declare_string(ParameterList& list, const std::string& name, const std::string& default_value,
+                    const std::string& doc, const std::vector<std::string>& allowed)
+{
+  declare(list, name, default_value, doc, Constraint::Kind::text, {}, allowed);
+}
+
+ParameterList& declare_sublist(ParameterList& list, const std::string& name, const std::string& doc)
+{
+  return list.sublist(name, false, doc);
+}
+
+void validate(ParameterList& user, const ParameterList& valid, const std::string& path)
+{
+  if (valid.numParams() == 0) return;   // free-form sublist
+  std::vector<std::string> valid_names;
+  for (auto it = valid.begin(); it != valid.end(); ++it) valid_names.push_back(valid.name(it));
+
+  for (auto it = user.begin(); it != user.end(); ++it) {
+    const std::string& name = user.name(it);
+    const std::string key = key_path(path, name);
+    if (!valid.isParameter(name))
+      throw InputError("unknown parameter '" + key + "'; allowed keys in '" + (path.empty() ? "/" : path) +
+                       "': " + join(valid_names));
+    const auto& valid_entry = valid.getEntry(name);
+    auto& user_entry = user.getEntry(name);
+    if (valid_entry.isList() != user_entry.isList())
+      throw InputError("parameter '" + key + "' must be " + (valid_entry.isList() ? "a sublist" : "a value") +
+                       (valid_entry.isList() ? "" : " (got a sublist)"));
+    if (valid_entry.isList()) {
+      validate(user.sublist(name), valid.sublist(name), key);
+      continue;
+    }
+    auto constraint = Teuchos::rcp_dynamic_cast<const Constraint>(valid_entry.validator());
+    if (constraint.is_null())
+      throw std::logic_error("parameter '" + key + "' was declared without spatula::parameters::declare_*");
+    check_value(user_entry, *constraint, key);
+  }
+
+  // Defaults for everything the user left out (recursively for sublists).
+  for (auto it = valid.begin(); it != valid.end(); ++it) {
+    const std::string& name = valid.name(it);
+    const auto& valid_entry = valid.entry(it);
+    if (valid_entry.isList()) {
+      if (!user.isSublist(name)) validate(user.sublist(name), valid.sublist(name), key_path(path, name));
+    } else if (!user.isParameter(name)) {
+      user.setEntry(name, valid_entry);
+    }
+  }
+}
+
+// Teuchos reads value="abc" of type double as 0 without complaint: check every literal before converting.
+namespace {
+
+void check_literals(const Teuchos::XMLObject& node, const std::string& path)
+{
+  for (int i = 0; i < node.numChildren(); ++i) {
+    const auto& child = node.getChild(i);
+    const std::string name = child.hasAttribute("name") ? child.getAttribute("name") : "?";
+    if (child.getTag() == "ParameterList") {
+      check_literals(child, key_path(path, name));
+      continue;
+    }
+    if (child.getTag() != "Parameter" || !child.hasAttribute("type") || !child.hasAttribute("value")) continue;
+    const std::string type = child.getAttribute("type");
+    const std::string value = child.getAttribute("value");
+    std::istringstream in(value);
+    bool ok = true;
+    if (type == "double") {
+      double number;
+      ok = static_cast<bool>(in >> number) && (in >> std::ws).eof();
+    } else if (type == "int") {
+      long number;
+      ok = static_cast<bool>(in >> number) && (in >> std::ws).eof();
+    } else if (type == "bool") {
+      ok = value == "true" || value == "false" || value == "1" || value == "0";
+    }
+    if (!ok)
+      throw InputError("parameter '" + key_path(path, name) + "': value '" + value + "' is not a valid " + type);
+  }
+}
+
+}  // namespace
+
+ParameterList read_xml_string(const std::string& xml, const std::string& origin)
+{
+  try {
+    const Teuchos::XMLObject root = Teuchos::StringInputSource(xml).getObject();
+    check_literals(root, "");
+    return Teuchos::XMLParameterListReader().toParameterList(root);
+  } catch (const InputError& error) {
+    throw InputError("in " + origin + ": " + error.what());
+  } catch (const std::exception& error) {
+    std::string message = error.what();
+    const auto cut = message.find_last_of('\n', message.size() > 1 ? message.size() - 2 : 0);
+    throw InputError("cannot read parameter list from " + origin + ": " +
+                     (cut == std::string::npos ? message : message.substr(cut + 1)));
+  }
+}
+
+ParameterList read_xml_file(const std::string& file_name)
+{
+  std::ifstream file(file_name);
+  if (!file) throw InputError("cannot open input file '" + file_name + "' (missing or unreadable)");
+  std::ostringstream content;
+  content << file.rdbuf();
+  return read_xml_string(content.str(), "file '" + file_name + "'");
+}
+
+void fail(const std::string& key, double value, const std::string& message)
+{
+  throw InputError("parameter '" + key + "' = " + format_number(value) + ": " + message);
+}
+
+}  // namespace spatula::parameters
