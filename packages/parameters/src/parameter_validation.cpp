@@ -2,6 +2,7 @@
 
 #include <Teuchos_ParameterEntryValidator.hpp>
 #include <Teuchos_StringInputSource.hpp>
+#include <Teuchos_XMLParameterListHelpers.hpp>
 #include <Teuchos_XMLParameterListReader.hpp>
 
 #include <algorithm>
@@ -283,6 +284,26 @@ ParameterList read_xml_file(const std::string& file_name)
   std::ostringstream content;
   content << file.rdbuf();
   return read_xml_string(content.str(), "file '" + file_name + "'");
+}
+
+namespace {
+
+ParameterList values_only(const ParameterList& list)
+{
+  ParameterList copy(list.name());
+  for (auto it = list.begin(); it != list.end(); ++it) {
+    const auto& entry = list.entry(it);
+    if (entry.isList()) copy.set(list.name(it), values_only(list.sublist(list.name(it))));
+    else copy.setEntry(list.name(it), Teuchos::ParameterEntry(entry.getAny(false)));
+  }
+  return copy;
+}
+
+}  // namespace
+
+void write_xml_file(const ParameterList& list, const std::string& file_name)
+{
+  Teuchos::writeParameterListToXmlFile(values_only(list), file_name);
 }
 
 void fail(const std::string& key, double value, const std::string& message)

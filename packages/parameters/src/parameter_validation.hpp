@@ -55,6 +55,9 @@ void validate(ParameterList& user, const ParameterList& valid, const std::string
 ParameterList read_xml_file(const std::string& file_name);
 ParameterList read_xml_string(const std::string& xml, const std::string& origin = "<string>");
 
+// Writes a (validated) list as XML, values only (validators and docs are not part of a scene file).
+void write_xml_file(const ParameterList& list, const std::string& file_name);
+
 // The path of a key for messages, e.g. "Geometry/l_p".
 std::string key_path(const std::string& path, const std::string& name);
 

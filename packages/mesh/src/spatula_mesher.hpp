@@ -1,0 +1,43 @@
+#pragma once
+// Meshes the parametric spatula into trilinear hexahedra, the four parts conforming at their interfaces.
+//
+// Topology (per in-plane factor k; the paper's Table 3 levels are k = 1, 4, 8):
+//  - the rim axis P2..P7 is split into 2k, 2k, 9k, 4k, 3k segments (P2P3, P3P4, P4P5, arc, P6P7);
+//  - P_III: the triangle {P2, P3, P12} as three quads (split k x k), height 2a(X);
+//  - P_II: a structured band along the rim axis, 2k elements across, cosine top profile;
+//  - P_IV: a C-grid, a core block and three ring blocks (2k thick) following its curved outline;
+//  - P_I: a half-disc cross-section mesh swept along the axis (18k segments on the shaft), its flat face
+//    coinciding with the symmetry plane (shaft), then with the P_III and P_II interfaces.
+// The pad parts are extruded in `layers` equal layers; P_I's half-disc has `layers` segments on its diameter.
+#include "hex_mesh.hpp"
+#include "spatula_shape.hpp"
+
+#include <Teuchos_ParameterList.hpp>
+
+#include <string>
+
+namespace spatula::mesh {
+
+struct MeshParameters {
+  std::string level = "coarse";   // a name in mesh_levels()
+  int refinement_factor = 1;      // multiplies the level's in-plane subdivision
+  int layers = 0;                 // elements through the pad thickness; 0: the level's value
+
+  int in_plane_factor() const;    // k
+  int layer_count() const;
+
+  static void declare(Teuchos::ParameterList& mesh);
+  static MeshParameters from(const Teuchos::ParameterList& mesh);
+};
+
+// The registry of named mesh levels (the paper's Table 3 densities).
+struct MeshLevel {
+  const char* name;
+  int in_plane_factor;
+  int layers;
+};
+const std::vector<MeshLevel>& mesh_levels();
+
+HexMesh mesh_spatula(const geometry::SpatulaShape& shape, const MeshParameters& parameters);
+
+}  // namespace spatula::mesh
