@@ -110,8 +110,10 @@ MeshSummary summarize(const HexMesh& mesh, const std::string& level)
       const auto &x = mesh.coordinates[a], &y = mesh.coordinates[b];
       return std::hypot(x[0] - y[0], x[1] - y[1], x[2] - y[2]);
     };
-    summary.largest_contact_diameter =
-        std::max({summary.largest_contact_diameter, distance(n[0], n[2]), distance(n[1], n[3])});
+    const double diameter = std::max(distance(n[0], n[2]), distance(n[1], n[3]));
+    summary.largest_contact_diameter = std::max(summary.largest_contact_diameter, diameter);
+    auto& per_part = summary.largest_contact_diameter_per_part[static_cast<int>(mesh.parts[side.element])];
+    per_part = std::max(per_part, diameter);
   }
   summary.contact_area = 2.0 * half_area;
   return summary;
@@ -128,6 +130,8 @@ void print(std::ostream& out, const MeshSummary& s)
   line("nodes", s.nodes);
   line("contact elements", s.contact_elements);
   line("largest contact diameter [nm]", s.largest_contact_diameter);
+  for (int p = 1; p < part_count; ++p)
+    line(std::string("  in ") + part_name(Part(p)), s.largest_contact_diameter_per_part[p]);
   line("contact area A_c [nm^2]", s.contact_area);
   line("volume [nm^3]", s.volume);
   line("min scaled Jacobian", s.min_scaled_jacobian);
@@ -139,6 +143,9 @@ void write_csv(std::ostream& out, const MeshSummary& s)
   out << "quantity,value\nlevel," << s.level << "\n";
   constexpr const char* keys[part_count] = {"elements_P_I", "elements_P_II", "elements_P_III", "elements_P_IV"};
   for (int p = 0; p < part_count; ++p) out << keys[p] << "," << s.elements_per_part[p] << "\n";
+  constexpr const char* diameters[part_count] = {"", "largest_contact_diameter_P_II_nm",
+                                                 "largest_contact_diameter_P_III_nm", "largest_contact_diameter_P_IV_nm"};
+  for (int p = 1; p < part_count; ++p) out << diameters[p] << "," << s.largest_contact_diameter_per_part[p] << "\n";
   out << "elements_total," << s.elements << "\nnodes," << s.nodes << "\ncontact_elements," << s.contact_elements
       << "\nlargest_contact_diameter_nm," << s.largest_contact_diameter << "\ncontact_area_nm2," << s.contact_area
       << "\nvolume_nm3," << s.volume << "\nmin_scaled_jacobian," << s.min_scaled_jacobian

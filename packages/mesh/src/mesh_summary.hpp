@@ -16,6 +16,7 @@ struct MeshSummary {
   std::int64_t elements = 0;
   std::int64_t contact_elements = 0;
   double largest_contact_diameter = 0.0;   // longest diagonal of a contact face [nm]
+  std::array<double, part_count> largest_contact_diameter_per_part{};
   double contact_area = 0.0;               // full spatula [nm^2]
   double volume = 0.0;                     // full spatula [nm^3]
   double min_scaled_jacobian = 0.0;        // over all element corners, 1 for a cube
