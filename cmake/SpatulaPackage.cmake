@@ -1,6 +1,7 @@
 # spatula_package(<name> SOURCES ... DEPENDS ...)
 #   One library per package: target spatula_<name>, alias Spatula::<name>, headers in packages/<name>/src,
-#   installed under include/spatula. DEPENDS lists the package's dependencies explicitly (PUBLIC).
+#   installed under include/spatula. DEPENDS lists the package's dependencies explicitly (PUBLIC). Without
+#   SOURCES the package is header-only (an INTERFACE library).
 # spatula_test(<name> SOURCES ... DEPENDS ... [RANKS n ...])
 #   A GoogleTest executable run by CTest once per rank count (default 1); MPI runs use mpiexec.
 include_guard(GLOBAL)
@@ -10,14 +11,21 @@ set(SPATULA_EXPORTED_TARGETS "" CACHE INTERNAL "")
 function(spatula_package name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS" ${ARGN})
   set(target spatula_${name})
-  add_library(${target} ${ARG_SOURCES})
+  if(ARG_SOURCES)
+    set(scope PUBLIC)
+    add_library(${target} ${ARG_SOURCES})
+    target_compile_options(${target} PRIVATE -Wall -Wextra)
+    set_target_properties(${target} PROPERTIES OUTPUT_NAME spatula_${name})
+  else()   # header-only package (laws and element kernels)
+    set(scope INTERFACE)
+    add_library(${target} INTERFACE)
+  endif()
   add_library(Spatula::${name} ALIAS ${target})
-  set_target_properties(${target} PROPERTIES EXPORT_NAME ${name} OUTPUT_NAME spatula_${name})
-  target_include_directories(${target} PUBLIC
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${name})
+  target_include_directories(${target} ${scope}
     $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/src>
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/spatula>)
-  target_link_libraries(${target} PUBLIC ${ARG_DEPENDS})
-  target_compile_options(${target} PRIVATE -Wall -Wextra)
+  target_link_libraries(${target} ${scope} ${ARG_DEPENDS})
   file(GLOB headers ${CMAKE_CURRENT_SOURCE_DIR}/src/*.hpp)
   install(FILES ${headers} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/spatula)
   install(TARGETS ${target} EXPORT SpatulaTargets
