@@ -1,0 +1,79 @@
+#pragma once
+// The distributed nonlinear system of the spatula: Tpetra maps over the unknowns of dof_layout.hpp, an FE graph
+// built once, and assembly of the residual and the consistent tangent by labelled Kokkos kernels over each rank's
+// elements (FECrsMatrix / FEMultiVector fill, shared rows summed at endFill).
+//
+// Unknowns are displacements [nm] and the two end-face masters: rotation alpha [rad] and lift w [nm]. Residual
+// rows are internal forces [nN] (the master rows: moment [nN nm] and Z force on the face, half spatula).
+// A prescribed master keeps an identity row and no coupling (its value lives in the state vector); its internal
+// force is returned as the reaction.
+#include "dof_layout.hpp"
+#include "neo_hookean.hpp"
+#include "rigid_face.hpp"
+#include "tpetra_types.hpp"
+
+#include <Teuchos_Comm.hpp>
+#include <Teuchos_ParameterList.hpp>
+
+#include <array>
+#include <memory>
+#include <string>
+
+namespace spatula::discretization {
+
+struct SolidParameters {
+  double young = 2.0;     // E [GPa] = [nN / nm^2]
+  double poisson = 0.2;   // nu
+  int quadrature_order = 2;   // Gauss points per direction in each hexahedron
+
+  static void declare(Teuchos::ParameterList& material);
+  static SolidParameters from(const Teuchos::ParameterList& material);
+};
+
+// Which end-face masters are prescribed (their values are then taken from the state vector).
+struct MasterControl {
+  std::array<bool, master_count> prescribed{true, true};
+};
+
+struct Evaluation {
+  bool admissible = true;          // false: an element inverted (J <= 0); residual and matrix are not usable
+  std::int64_t inverted_element = -1;
+  double internal_energy = 0.0;    // Pi_int of the half model [nN nm]
+  std::array<double, master_count> master_residual{};   // moment [nN nm] and Z force [nN] on the face (half)
+};
+
+class DiscreteSystem {
+public:
+  DiscreteSystem(const mesh::HexMesh& mesh, const mesh::Partition& partition, const Constraints& constraints,
+                 const SolidParameters& solid, Teuchos::RCP<const Teuchos::Comm<int>> comm);
+  ~DiscreteSystem();
+
+  Teuchos::RCP<const Map> owned_map() const;
+  Teuchos::RCP<Vector> create_vector() const;   // zero state = the undeformed spatula
+  Teuchos::RCP<CrsMatrix> jacobian() const;    // the FE matrix the assembly fills
+  const DofLayout& layout() const;
+
+  void set_control(const MasterControl& control);
+  const MasterControl& control() const;
+  // Value of a master unknown in x (same on all ranks), and setting it (the owner writes).
+  double master(const Vector& x, Master which) const;
+  void set_master(Vector& x, Master which, double value) const;
+
+  // Assembles what is asked: the residual (if non-null), the tangent into jacobian() (if `with_jacobian`).
+  Evaluation evaluate(const Vector& x, Vector* residual, bool with_jacobian);
+
+  // Writes nodal displacements u (N x 3, row-major, all mesh nodes) into the free unknowns of x that this rank
+  // owns (fixed and rigid components are not unknowns and are ignored).
+  void set_displacements(Vector& x, const std::vector<double>& u) const;
+
+  // Nodal displacements (N x 3, row-major, every node of the mesh including fixed and rigid ones) and the
+  // element field tr(sigma) [GPa], both complete on every rank (for output and diagnostics).
+  std::vector<double> node_displacements(const Vector& x) const;
+  std::vector<double> element_cauchy_trace(const Vector& x) const;
+
+private:
+  struct Implementation;
+  std::unique_ptr<Implementation> implementation_;
+};
+
+}  // namespace spatula::discretization

@@ -1,0 +1,44 @@
+#include "dof_layout.hpp"
+
+namespace spatula::discretization {
+
+Constraints spatula_constraints(const mesh::HexMesh& mesh, const std::array<double, 3>& face_centre,
+                                bool hold_contact_surface)
+{
+  Constraints constraints;
+  constraints.fixed.push_back({mesh.nodes(mesh::Boundary::symmetry), 1});
+  if (hold_contact_surface) constraints.fixed.push_back({mesh.nodes(mesh::Boundary::contact), 2});
+  constraints.rigid_nodes = mesh.nodes(mesh::Boundary::end_face);
+  constraints.rigid_centre = face_centre;
+  return constraints;
+}
+
+DofLayout make_dof_layout(const mesh::HexMesh& mesh, const mesh::Partition& partition, const Constraints& constraints)
+{
+  DofLayout layout;
+  const auto nodes = static_cast<std::size_t>(mesh.node_count());
+  layout.rigid.assign(nodes, 0);
+  for (auto n : constraints.rigid_nodes) layout.rigid[n] = 1;
+  std::vector<std::array<char, 3>> held(nodes, {0, 0, 0});
+  for (const auto& fixed : constraints.fixed)
+    for (auto n : fixed.nodes) held[n][fixed.component] = 1;
+
+  layout.node_dofs.assign(nodes, {DofLayout::fixed, DofLayout::fixed, DofLayout::fixed});
+  std::int64_t next = 0;
+  layout.rank_offsets.push_back(0);
+  for (int rank = 0; rank < partition.ranks; ++rank) {
+    for (std::size_t n = 0; n < nodes; ++n) {
+      if (partition.node_owner[n] != rank || layout.rigid[n]) continue;
+      for (int i = 0; i < 3; ++i)
+        if (!held[n][i]) layout.node_dofs[n][i] = next++;
+    }
+    if (rank == 0) {
+      layout.masters = {next, next + 1};
+      next += 2;
+    }
+    layout.rank_offsets.push_back(next);
+  }
+  return layout;
+}
+
+}  // namespace spatula::discretization

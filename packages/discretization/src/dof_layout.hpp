@@ -1,0 +1,45 @@
+#pragma once
+// Global numbering of the unknowns, identical on every rank: the free displacement components of the nodes
+// owned by rank 0, then the two master unknowns of the rigid end face (rotation, lift), then the free components
+// of rank 1's nodes, and so on; each rank's block is contiguous (as MUMPS' distributed input wants).
+// Removed from the unknowns: the fixed components listed in the constraints (u_y on the symmetry plane, ...), and
+// every component of a rigid end-face node (it follows the masters, see rigid_face.hpp).
+#include "hex_mesh.hpp"
+#include "partition.hpp"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace spatula::discretization {
+
+// What is held: components fixed at zero, and the nodes moving with the rigid end face about `rigid_centre`.
+struct Constraints {
+  struct Fixed {
+    std::vector<std::int64_t> nodes;
+    int component = 0;
+  };
+  std::vector<Fixed> fixed;
+  std::vector<std::int64_t> rigid_nodes;
+  std::array<double, 3> rigid_centre{};
+};
+
+// The spatula's constraints: u_y = 0 on the symmetry plane, the end face rigid about P1, and optionally the pad's
+// contact surface held at Z = 0 (a check without adhesion).
+Constraints spatula_constraints(const mesh::HexMesh& mesh, const std::array<double, 3>& face_centre,
+                                bool hold_contact_surface);
+
+struct DofLayout {
+  static constexpr std::int64_t fixed = -1;
+
+  std::vector<std::array<std::int64_t, 3>> node_dofs;   // global id or `fixed`
+  std::vector<char> rigid;                              // node follows the end face
+  std::array<std::int64_t, 2> masters{};                 // global ids of rotation, lift
+  std::vector<std::int64_t> rank_offsets;               // rank r owns [offsets[r], offsets[r+1])
+  std::int64_t count() const { return rank_offsets.back(); }
+};
+
+DofLayout make_dof_layout(const mesh::HexMesh& mesh, const mesh::Partition& partition,
+                          const Constraints& constraints);
+
+}  // namespace spatula::discretization

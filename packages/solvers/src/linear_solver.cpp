@@ -1,0 +1,203 @@
+#include "linear_solver.hpp"
+
+#include "parameter_validation.hpp"
+
+#include <Stratimikos_DefaultLinearSolverBuilder.hpp>
+#include <Teuchos_AbstractFactoryStd.hpp>
+#include <Thyra_DefaultPreconditioner.hpp>
+#include <Thyra_Ifpack2PreconditionerFactory.hpp>
+#include <Thyra_PreconditionerFactoryBase.hpp>
+#include <Thyra_TpetraLinearOp.hpp>
+#include <Thyra_TpetraThyraWrappers.hpp>
+
+namespace spatula::solvers {
+
+using discretization::GlobalOrdinal;
+using discretization::LocalOrdinal;
+using discretization::Node;
+
+const std::vector<std::string>& linear_solver_names()
+{
+  static const std::vector<std::string> names = {"mumps", "gmres-ilu"};
+  return names;
+}
+
+void LinearSolverParameters::declare(Teuchos::ParameterList& list)
+{
+  using parameters::Range;
+  parameters::declare_string(list, "type", "mumps", "linear solver of the Newton steps", linear_solver_names());
+  parameters::declare_double(list, "tolerance", 1e-10, "relative residual of each linear solve",
+                             {0.0, 0.1, true, false});
+  parameters::declare_int(list, "maximum iterations", 500, "Krylov iterations per solve (gmres-ilu)",
+                          Range::closed(1, 100000));
+  parameters::declare_int(list, "ILU fill level", 1, "level of fill of ILU(k) (gmres-ilu)", Range::closed(0, 8));
+  MumpsParameters::declare(parameters::declare_sublist(list, "MUMPS", "direct solver options"));
+}
+
+LinearSolverParameters LinearSolverParameters::from(const Teuchos::ParameterList& list)
+{
+  LinearSolverParameters p;
+  p.type = list.get<std::string>("type");
+  p.tolerance = list.get<double>("tolerance");
+  p.maximum_iterations = list.get<int>("maximum iterations");
+  p.fill_level = list.get<int>("ILU fill level");
+  p.mumps = MumpsParameters::from(list.sublist("MUMPS"));
+  return p;
+}
+
+namespace {
+
+using ThyraOperator = Thyra::TpetraLinearOp<double, LocalOrdinal, GlobalOrdinal, Node>;
+
+// MUMPS as a Thyra preconditioner: A^-1 itself. Keeps one MumpsSolver (and its symbolic analysis) per map.
+class MumpsPreconditionerFactory : public Thyra::PreconditionerFactoryBase<double> {
+public:
+  MumpsPreconditionerFactory(MumpsParameters parameters, std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver)
+      : parameters_(parameters), solver_(std::move(solver))
+  {
+  }
+
+  bool isCompatible(const Thyra::LinearOpSourceBase<double>& source) const override
+  {
+    return !matrix_of(source).is_null();
+  }
+
+  Teuchos::RCP<Thyra::PreconditionerBase<double>> createPrec() const override
+  {
+    return Teuchos::rcp(new Thyra::DefaultPreconditioner<double>);
+  }
+
+  void initializePrec(const Teuchos::RCP<const Thyra::LinearOpSourceBase<double>>& source,
+                      Thyra::PreconditionerBase<double>* preconditioner,
+                      const Thyra::ESupportSolveUse) const override
+  {
+    const auto matrix = matrix_of(*source);
+    if (matrix.is_null()) throw std::logic_error("MUMPS preconditioner: operator is not a Tpetra CrsMatrix");
+    auto& solver = *solver_;
+    if (solver.is_null() || !solver->getDomainMap()->isSameAs(*matrix->getRowMap()))
+      solver = Teuchos::rcp(new MumpsSolver(matrix->getRowMap(), parameters_));
+    solver->factor(*matrix);
+    auto& target = dynamic_cast<Thyra::DefaultPreconditioner<double>&>(*preconditioner);
+    const auto space = Thyra::tpetraVectorSpace<double>(matrix->getRowMap());
+    const Teuchos::RCP<const Thyra::LinearOpBase<double>> inverse =
+        Thyra::tpetraLinearOp<double, LocalOrdinal, GlobalOrdinal, Node>(space, space, solver);
+    target.initializeUnspecified(inverse);
+  }
+
+  void uninitializePrec(Thyra::PreconditionerBase<double>* preconditioner,
+                        Teuchos::RCP<const Thyra::LinearOpSourceBase<double>>* source,
+                        Thyra::ESupportSolveUse* use) const override
+  {
+    if (source) *source = Teuchos::null;
+    if (use) *use = Thyra::SUPPORT_SOLVE_UNSPECIFIED;
+    dynamic_cast<Thyra::DefaultPreconditioner<double>&>(*preconditioner).uninitialize();
+  }
+
+  void setParameterList(const Teuchos::RCP<Teuchos::ParameterList>& list) override { list_ = list; }
+  Teuchos::RCP<Teuchos::ParameterList> getNonconstParameterList() override { return list_; }
+  Teuchos::RCP<Teuchos::ParameterList> unsetParameterList() override
+  {
+    auto old = list_;
+    list_ = Teuchos::null;
+    return old;
+  }
+  Teuchos::RCP<const Teuchos::ParameterList> getValidParameters() const override
+  {
+    return Teuchos::rcp(new Teuchos::ParameterList("MUMPS"));
+  }
+
+private:
+  static Teuchos::RCP<const discretization::CrsMatrix> matrix_of(const Thyra::LinearOpSourceBase<double>& source)
+  {
+    const auto op = Teuchos::rcp_dynamic_cast<const ThyraOperator>(source.getOp());
+    if (op.is_null()) return Teuchos::null;
+    return Teuchos::rcp_dynamic_cast<const discretization::CrsMatrix>(op->getConstTpetraOperator());
+  }
+
+  MumpsParameters parameters_;
+  std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver_;
+  Teuchos::RCP<Teuchos::ParameterList> list_;
+};
+
+class MumpsFactoryCreator : public Teuchos::AbstractFactory<Thyra::PreconditionerFactoryBase<double>> {
+public:
+  MumpsFactoryCreator(MumpsParameters parameters, std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver)
+      : parameters_(parameters), solver_(std::move(solver))
+  {
+  }
+  Teuchos::RCP<Thyra::PreconditionerFactoryBase<double>> create() const override
+  {
+    return Teuchos::rcp(new MumpsPreconditionerFactory(parameters_, solver_));
+  }
+
+private:
+  MumpsParameters parameters_;
+  std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver_;
+};
+
+Teuchos::RCP<Teuchos::ParameterList> stratimikos_list(const LinearSolverParameters& p)
+{
+  auto list = Teuchos::rcp(new Teuchos::ParameterList("Stratimikos"));
+  list->set("Linear Solver Type", "Belos");
+  auto& belos = list->sublist("Linear Solver Types").sublist("Belos");
+  belos.set("Solver Type", "Pseudo Block GMRES");
+  auto& gmres = belos.sublist("Solver Types").sublist("Pseudo Block GMRES");
+  gmres.set("Convergence Tolerance", p.tolerance);
+  if (p.type == "mumps") {
+    gmres.set("Maximum Iterations", 10);   // an exact inverse: one iteration, a few more refine
+    gmres.set("Num Blocks", 10);
+    list->set("Preconditioner Type", "MUMPS");
+  } else {
+    gmres.set("Maximum Iterations", p.maximum_iterations);
+    gmres.set("Num Blocks", std::min(p.maximum_iterations, 200));
+    list->set("Preconditioner Type", "Ifpack2");
+    auto& ifpack2 = list->sublist("Preconditioner Types").sublist("Ifpack2");
+    ifpack2.set("Prec Type", "SCHWARZ");
+    auto& settings = ifpack2.sublist("Ifpack2 Settings");
+    settings.set("schwarz: overlap level", 1);
+    settings.set("schwarz: inner preconditioner name", "RILUK");
+    settings.sublist("schwarz: inner preconditioner parameters").set("fact: iluk level-of-fill", p.fill_level);
+  }
+  return list;
+}
+
+}  // namespace
+
+struct LinearSolverFactory::Implementation {
+  LinearSolverParameters parameters;
+  std::shared_ptr<Teuchos::RCP<MumpsSolver>> mumps = std::make_shared<Teuchos::RCP<MumpsSolver>>();
+  Teuchos::RCP<const Thyra::LinearOpWithSolveFactoryBase<double>> factory;
+  MumpsStatistics empty;
+};
+
+LinearSolverFactory::LinearSolverFactory(const LinearSolverParameters& parameters)
+    : implementation_(std::make_unique<Implementation>())
+{
+  auto& impl = *implementation_;
+  impl.parameters = parameters;
+  Stratimikos::DefaultLinearSolverBuilder builder;
+  builder.setPreconditioningStrategyFactory(Teuchos::rcp(new MumpsFactoryCreator(parameters.mumps, impl.mumps)),
+                                            "MUMPS");
+  using Ifpack2Factory = Thyra::Ifpack2PreconditionerFactory<discretization::CrsMatrix>;
+  builder.setPreconditioningStrategyFactory(
+      Teuchos::abstractFactoryStd<Thyra::PreconditionerFactoryBase<double>, Ifpack2Factory>(), "Ifpack2");
+  builder.setParameterList(stratimikos_list(parameters));
+  impl.factory = builder.createLinearSolveStrategy("");
+}
+
+LinearSolverFactory::~LinearSolverFactory() = default;
+
+Teuchos::RCP<const Thyra::LinearOpWithSolveFactoryBase<double>> LinearSolverFactory::lows_factory() const
+{
+  return implementation_->factory;
+}
+
+const MumpsStatistics& LinearSolverFactory::mumps_statistics() const
+{
+  const auto& solver = *implementation_->mumps;
+  return solver.is_null() ? implementation_->empty : solver->statistics();
+}
+
+const LinearSolverParameters& LinearSolverFactory::parameters() const { return implementation_->parameters; }
+
+}  // namespace spatula::solvers

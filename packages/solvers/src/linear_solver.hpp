@@ -1,0 +1,48 @@
+#pragma once
+// Linear solvers for the Newton steps, chosen by name in XML and built through Stratimikos:
+//
+//   mumps      MUMPS LDL^T (or LU) direct solve, wrapped as an exact preconditioner of Belos GMRES (which then
+//              converges in one iteration and refines the direct solution); correct on any number of ranks.
+//   gmres-ilu  Belos GMRES with an Ifpack2 additive Schwarz preconditioner (overlap 1, ILU(k) on each block).
+//
+// The MUMPS factorization object lives as long as the factory, so its symbolic analysis is reused by every
+// Newton iteration and load step.
+#include "mumps_solver.hpp"
+
+#include <Teuchos_ParameterList.hpp>
+#include <Thyra_LinearOpWithSolveFactoryBase.hpp>
+
+#include <string>
+#include <vector>
+
+namespace spatula::solvers {
+
+struct LinearSolverParameters {
+  std::string type = "mumps";   // a name in linear_solver_names()
+  double tolerance = 1e-10;     // relative residual of each linear solve
+  int maximum_iterations = 500; // Krylov iterations (gmres-ilu)
+  int fill_level = 1;           // ILU(k) level of fill (gmres-ilu)
+  MumpsParameters mumps;
+
+  static void declare(Teuchos::ParameterList& list);
+  static LinearSolverParameters from(const Teuchos::ParameterList& list);
+};
+
+const std::vector<std::string>& linear_solver_names();
+
+class LinearSolverFactory {
+public:
+  explicit LinearSolverFactory(const LinearSolverParameters& parameters);
+  ~LinearSolverFactory();
+
+  Teuchos::RCP<const Thyra::LinearOpWithSolveFactoryBase<double>> lows_factory() const;
+  // Statistics of the MUMPS factorizations (all zero for iterative solvers).
+  const MumpsStatistics& mumps_statistics() const;
+  const LinearSolverParameters& parameters() const;
+
+private:
+  struct Implementation;
+  std::unique_ptr<Implementation> implementation_;
+};
+
+}  // namespace spatula::solvers

@@ -1,0 +1,226 @@
+#include "mumps_solver.hpp"
+
+#include "parameter_validation.hpp"
+
+#include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_DefaultMpiComm.hpp>
+#include <Teuchos_TimeMonitor.hpp>
+#include <Tpetra_Import.hpp>
+
+#include <dmumps_c.h>
+#include <mpi.h>
+
+#include <chrono>
+#include <stdexcept>
+#include <string>
+
+namespace spatula::solvers {
+
+using discretization::GlobalOrdinal;
+using discretization::Import;
+
+void MumpsParameters::declare(Teuchos::ParameterList& list)
+{
+  parameters::declare_bool(list, "symmetric", true,
+                           "LDL^T factorization (symmetric indefinite); false: LU");
+  parameters::declare_int(list, "memory relaxation", 40, "MUMPS ICNTL(14): extra workspace [%]",
+                          parameters::Range::closed(0, 1000));
+}
+
+MumpsParameters MumpsParameters::from(const Teuchos::ParameterList& list)
+{
+  MumpsParameters p;
+  p.symmetric = list.get<bool>("symmetric");
+  p.memory_relaxation = list.get<int>("memory relaxation");
+  return p;
+}
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// ICNTL/INFOG are 1-based in the MUMPS documentation.
+int& icntl(DMUMPS_STRUC_C& id, int index) { return id.icntl[index - 1]; }
+int infog(const DMUMPS_STRUC_C& id, int index) { return id.infog[index - 1]; }
+
+std::string describe_error(const DMUMPS_STRUC_C& id)
+{
+  const int code = infog(id, 1), detail = infog(id, 2);
+  std::string what = "MUMPS error INFOG(1) = " + std::to_string(code) + ", INFOG(2) = " + std::to_string(detail);
+  if (code == -10) what += " (numerically singular matrix)";
+  if (code == -9 || code == -8 || code == -13) what += " (out of memory; raise 'memory relaxation')";
+  return what;
+}
+
+}  // namespace
+
+struct MumpsSolver::Implementation {
+  Teuchos::RCP<const Map> map;
+  Teuchos::RCP<const Map> root_map;   // every unknown on rank 0
+  Teuchos::RCP<const Import> to_root;
+  MumpsParameters parameters;
+  DMUMPS_STRUC_C id{};
+  bool analysed = false;
+  std::vector<int> rows, columns;   // 1-based global indices of the entries handed to MUMPS
+  std::vector<double> values;
+  std::size_t analysed_entries = 0;   // stored entries of the matrix the analysis was done for
+  mutable std::vector<double> right_hand_side;
+  mutable MumpsStatistics statistics;
+
+  Implementation(Teuchos::RCP<const Map> map_, const MumpsParameters& parameters_)
+      : map(std::move(map_)), parameters(parameters_)
+  {
+    const auto comm = map->getComm();
+    const auto mpi_comm = Teuchos::rcp_dynamic_cast<const Teuchos::MpiComm<int>>(comm);
+    if (mpi_comm.is_null()) throw std::logic_error("MumpsSolver needs an MPI communicator");
+    const GlobalOrdinal count = static_cast<GlobalOrdinal>(map->getGlobalNumElements());
+    if (map->getMinAllGlobalIndex() != 0 || map->getMaxAllGlobalIndex() != count - 1)
+      throw std::logic_error("MumpsSolver needs global ids 0..n-1");
+    std::vector<GlobalOrdinal> all;
+    if (comm->getRank() == 0)
+      for (GlobalOrdinal i = 0; i < count; ++i) all.push_back(i);
+    root_map = Teuchos::rcp(new Map(count, all.data(), all.size(), 0, comm));
+    to_root = Teuchos::rcp(new Import(map, root_map));
+
+    id.comm_fortran = static_cast<int>(MPI_Comm_c2f(*mpi_comm->getRawMpiComm()));
+    id.par = 1;   // rank 0 works too
+    id.sym = parameters.symmetric ? 2 : 0;
+    id.job = -1;
+    dmumps_c(&id);
+    icntl(id, 1) = -1;   // no MUMPS printing: errors are reported through exceptions
+    icntl(id, 2) = -1;
+    icntl(id, 3) = -1;
+    icntl(id, 4) = 0;
+    icntl(id, 5) = 0;    // assembled matrix
+    icntl(id, 18) = 3;   // distributed entries
+    icntl(id, 14) = parameters.memory_relaxation;
+    icntl(id, 20) = 0;   // dense centralized right-hand side
+    icntl(id, 21) = 0;   // centralized solution
+  }
+
+  ~Implementation()
+  {
+    id.job = -2;
+    dmumps_c(&id);
+  }
+
+  void collect(const CrsMatrix& matrix, bool pattern)
+  {
+    const auto row_map = matrix.getRowMap();
+    const auto column_map = matrix.getColMap();
+    if (pattern) {
+      rows.clear();
+      columns.clear();
+    }
+    values.clear();
+    for (std::size_t lid = 0; lid < row_map->getNodeNumElements(); ++lid) {
+      typename CrsMatrix::local_inds_host_view_type indices;
+      typename CrsMatrix::values_host_view_type entries;
+      matrix.getLocalRowView(static_cast<int>(lid), indices, entries);
+      const auto row = row_map->getGlobalElement(lid);
+      for (std::size_t k = 0; k < indices.extent(0); ++k) {
+        const auto column = column_map->getGlobalElement(indices(k));
+        if (parameters.symmetric && column > row) continue;   // one triangle only (MUMPS sums duplicates)
+        if (pattern) {
+          rows.push_back(static_cast<int>(row + 1));
+          columns.push_back(static_cast<int>(column + 1));
+        }
+        values.push_back(entries(k));
+      }
+    }
+  }
+
+  void factor(const CrsMatrix& matrix)
+  {
+    if (!matrix.getRowMap()->isSameAs(*map)) throw std::logic_error("MumpsSolver: matrix row map differs");
+    // The decision must be the same on every rank (MUMPS calls are collective).
+    int changed = !analysed || matrix.getNodeNumEntries() != analysed_entries;
+    Teuchos::reduceAll(*map->getComm(), Teuchos::REDUCE_MAX, changed, Teuchos::outArg(changed));
+    const bool pattern = changed != 0;
+    collect(matrix, pattern);
+    id.n = static_cast<int>(map->getGlobalNumElements());
+    id.nnz_loc = static_cast<MUMPS_INT8>(rows.size());
+    id.irn_loc = rows.data();
+    id.jcn_loc = columns.data();
+    id.a_loc = values.data();
+    if (pattern) {
+      Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: linear solve (MUMPS analysis)"));
+      const auto start = std::chrono::steady_clock::now();
+      id.job = 1;
+      dmumps_c(&id);
+      if (infog(id, 1) < 0) throw std::runtime_error("MUMPS analysis failed: " + describe_error(id));
+      analysed = true;
+      analysed_entries = matrix.getNodeNumEntries();
+      ++statistics.analyses;
+      statistics.analysis_seconds += seconds_since(start);
+    }
+    Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: linear solve (MUMPS factorization)"));
+    const auto start = std::chrono::steady_clock::now();
+    id.job = 2;
+    dmumps_c(&id);
+    if (infog(id, 1) < 0) throw std::runtime_error("MUMPS factorization failed: " + describe_error(id));
+    ++statistics.factorizations;
+    statistics.factorization_seconds += seconds_since(start);
+    statistics.negative_pivots = parameters.symmetric ? infog(id, 12) : -1;
+  }
+
+  void solve(const MultiVector& X, MultiVector& Y, double alpha, double beta) const
+  {
+    Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: linear solve (MUMPS solve)"));
+    const auto start = std::chrono::steady_clock::now();
+    const std::size_t vectors = X.getNumVectors();
+    MultiVector root(root_map, vectors);
+    root.doImport(X, *to_root, Tpetra::INSERT);
+    const int n = static_cast<int>(map->getGlobalNumElements());
+    const bool is_root = map->getComm()->getRank() == 0;
+    if (is_root) {
+      right_hand_side.resize(static_cast<std::size_t>(n) * vectors);
+      for (std::size_t v = 0; v < vectors; ++v) {
+        const auto data = root.getData(v);
+        std::copy(data.begin(), data.end(), right_hand_side.begin() + v * n);
+      }
+    }
+    auto& mutable_id = const_cast<DMUMPS_STRUC_C&>(id);
+    mutable_id.nrhs = static_cast<int>(vectors);
+    mutable_id.lrhs = n;
+    mutable_id.rhs = is_root ? right_hand_side.data() : nullptr;
+    mutable_id.job = 3;
+    dmumps_c(&mutable_id);
+    if (infog(id, 1) < 0) throw std::runtime_error("MUMPS solve failed: " + describe_error(id));
+    if (is_root)
+      for (std::size_t v = 0; v < vectors; ++v) {
+        auto data = root.getDataNonConst(v);
+        std::copy(right_hand_side.begin() + v * n, right_hand_side.begin() + (v + 1) * n, data.begin());
+      }
+    MultiVector solution(map, vectors);
+    solution.doExport(root, *to_root, Tpetra::INSERT);
+    Y.update(alpha, solution, beta);
+    ++statistics.solves;
+    statistics.solve_seconds += seconds_since(start);
+  }
+};
+
+MumpsSolver::MumpsSolver(Teuchos::RCP<const Map> map, const MumpsParameters& parameters)
+    : implementation_(std::make_unique<Implementation>(std::move(map), parameters))
+{
+}
+
+MumpsSolver::~MumpsSolver() = default;
+
+void MumpsSolver::factor(const CrsMatrix& matrix) { implementation_->factor(matrix); }
+
+void MumpsSolver::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp mode, double alpha, double beta) const
+{
+  if (mode != Teuchos::NO_TRANS && !implementation_->parameters.symmetric)
+    throw std::logic_error("MumpsSolver: transposed solves are not supported in LU mode");
+  implementation_->solve(X, Y, alpha, beta);
+}
+
+Teuchos::RCP<const Map> MumpsSolver::getDomainMap() const { return implementation_->map; }
+Teuchos::RCP<const Map> MumpsSolver::getRangeMap() const { return implementation_->map; }
+const MumpsStatistics& MumpsSolver::statistics() const { return implementation_->statistics; }
+
+}  // namespace spatula::solvers

@@ -1,0 +1,59 @@
+#pragma once
+// MUMPS as a distributed direct solver for Tpetra matrices, usable as a Tpetra::Operator that applies A^-1.
+//
+// Each rank hands MUMPS its owned rows (distributed assembled input, ICNTL(18) = 3); the right-hand side and the
+// solution travel through rank 0 (centralized dense RHS). The symbolic analysis is done once for a sparsity
+// pattern and reused by every later numerical factorization. Symmetric mode uses LDL^T with pivoting (SYM = 2),
+// which handles the indefinite tangents met near instabilities, and reports the number of negative pivots (the
+// inertia: how many eigenvalues of the tangent are negative).
+#include "tpetra_types.hpp"
+
+#include <Teuchos_ParameterList.hpp>
+
+#include <memory>
+
+namespace spatula::solvers {
+
+using discretization::CrsMatrix;
+using discretization::Map;
+using discretization::MultiVector;
+using discretization::Operator;
+
+struct MumpsParameters {
+  bool symmetric = true;        // LDL^T (SYM = 2); false: LU (SYM = 0)
+  int memory_relaxation = 40;   // ICNTL(14), per cent
+  static void declare(Teuchos::ParameterList& list);
+  static MumpsParameters from(const Teuchos::ParameterList& list);
+};
+
+struct MumpsStatistics {
+  int analyses = 0;
+  int factorizations = 0;
+  int solves = 0;
+  int negative_pivots = -1;   // from the last factorization (symmetric mode), -1 if unknown
+  double analysis_seconds = 0.0, factorization_seconds = 0.0, solve_seconds = 0.0;
+};
+
+class MumpsSolver : public Operator {
+public:
+  MumpsSolver(Teuchos::RCP<const Map> map, const MumpsParameters& parameters);
+  ~MumpsSolver() override;
+
+  // Numerical factorization of A (its row map must be the solver's map); analysis on first use or when the
+  // number of stored entries changes. Throws std::runtime_error naming the MUMPS error (e.g. a singular matrix).
+  void factor(const CrsMatrix& matrix);
+
+  // Y = alpha A^-1 X + beta Y (mode must be NO_TRANS; the factorized matrix is symmetric anyway).
+  void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp mode = Teuchos::NO_TRANS,
+             double alpha = 1.0, double beta = 0.0) const override;
+  Teuchos::RCP<const Map> getDomainMap() const override;
+  Teuchos::RCP<const Map> getRangeMap() const override;
+
+  const MumpsStatistics& statistics() const;
+
+private:
+  struct Implementation;
+  std::unique_ptr<Implementation> implementation_;
+};
+
+}  // namespace spatula::solvers

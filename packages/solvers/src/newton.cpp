@@ -1,0 +1,173 @@
+#include "newton.hpp"
+
+#include "parameter_validation.hpp"
+
+#include <NOX_Observer.hpp>
+#include <NOX_Solver_Factory.H>
+#include <NOX_Solver_Generic.H>
+#include <NOX_Solver_LineSearchBased.H>
+#include <NOX_StatusTest_Combo.H>
+#include <NOX_StatusTest_FiniteValue.H>
+#include <NOX_StatusTest_MaxIters.H>
+#include <NOX_StatusTest_NormF.H>
+#include <NOX_StatusTest_NormUpdate.H>
+#include <NOX_Thyra_Group.H>
+#include <NOX_Thyra_Vector.H>
+#include <Teuchos_TimeMonitor.hpp>
+#include <Thyra_TpetraThyraWrappers.hpp>
+
+#include <chrono>
+#include <iomanip>
+#include <ostream>
+
+namespace spatula::solvers {
+
+using discretization::GlobalOrdinal;
+using discretization::LocalOrdinal;
+using discretization::Node;
+using Extract = Thyra::TpetraOperatorVectorExtraction<double, LocalOrdinal, GlobalOrdinal, Node>;
+
+const std::vector<std::string>& line_search_names()
+{
+  static const std::vector<std::string> names = {"backtrack", "polynomial", "full step"};
+  return names;
+}
+
+void NewtonParameters::declare(Teuchos::ParameterList& list)
+{
+  using parameters::Range;
+  parameters::declare_double(list, "relative tolerance", 1e-9, "|f| relative to its value at the step start",
+                             {0.0, 1.0, false, true});
+  parameters::declare_double(list, "absolute tolerance", 1e-9, "|f|_2 [nN]", Range::non_negative());
+  parameters::declare_double(list, "update tolerance", 1e-6, "|dx|_inf [nm, rad]", Range::positive());
+  parameters::declare_int(list, "maximum iterations", 25, "Newton iterations per load step", Range::closed(1, 500));
+  parameters::declare_string(list, "line search", "backtrack", "step length control", line_search_names());
+}
+
+NewtonParameters NewtonParameters::from(const Teuchos::ParameterList& list)
+{
+  NewtonParameters p;
+  p.relative_tolerance = list.get<double>("relative tolerance");
+  p.absolute_tolerance = list.get<double>("absolute tolerance");
+  p.update_tolerance = list.get<double>("update tolerance");
+  p.maximum_iterations = list.get<int>("maximum iterations");
+  p.line_search = list.get<std::string>("line search");
+  return p;
+}
+
+namespace {
+
+// Records one row of the convergence table per Newton iteration.
+class TableObserver : public NOX::Observer {
+public:
+  TableObserver(NewtonResult& result, const LinearSolverFactory& linear, std::ostream* table)
+      : result_(result), linear_(linear), table_(table), start_(std::chrono::steady_clock::now())
+  {
+  }
+
+  void runPreSolve(const NOX::Solver::Generic& solver) override
+  {
+    result_.initial_residual_norm = solver.getSolutionGroup().getNormF();
+    if (table_)
+      *table_ << "    newton    |f| [nN]     |dx|_inf      step   neg.piv   time [s]\n"
+              << "    " << std::setw(6) << 0 << "  " << std::scientific << std::setprecision(3)
+              << result_.initial_residual_norm << std::defaultfloat << "\n";
+  }
+
+  void runPostIterate(const NOX::Solver::Generic& solver) override
+  {
+    NewtonIteration row;
+    row.iteration = solver.getNumIterations();
+    const auto& current = solver.getSolutionGroup();
+    row.residual_norm = current.getNormF();
+    auto update = current.getX().clone(NOX::DeepCopy);
+    update->update(-1.0, solver.getPreviousSolutionGroup().getX(), 1.0);
+    row.update_norm = update->norm(NOX::Abstract::Vector::MaxNorm);
+    if (const auto* line_search = dynamic_cast<const NOX::Solver::LineSearchBased*>(&solver))
+      row.step = line_search->getStepSize();
+    row.negative_pivots = linear_.mumps_statistics().negative_pivots;
+    row.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    result_.iterations.push_back(row);
+    if (table_)
+      *table_ << "    " << std::setw(6) << row.iteration << "  " << std::scientific << std::setprecision(3)
+              << row.residual_norm << "  " << row.update_norm << "  " << std::defaultfloat << std::setprecision(3)
+              << std::setw(6) << row.step << "  " << std::setw(7) << row.negative_pivots << "  " << std::setw(8)
+              << row.seconds << "\n";
+  }
+
+private:
+  NewtonResult& result_;
+  const LinearSolverFactory& linear_;
+  std::ostream* table_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace
+
+NewtonSolver::NewtonSolver(Teuchos::RCP<SpatulaModel> model, const NewtonParameters& parameters,
+                           const LinearSolverFactory& linear_solver)
+    : model_(std::move(model)), parameters_(parameters), linear_solver_(linear_solver)
+{
+}
+
+NewtonResult NewtonSolver::solve(discretization::Vector& x, std::ostream* table) const
+{
+  Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: newton"));
+  NewtonResult result;
+  const auto space = model_->get_x_space();
+  auto start = Teuchos::rcp(new discretization::Vector(x, Teuchos::Copy));
+  NOX::Thyra::Vector initial_guess(Thyra::createVector(start, space));
+  auto group = Teuchos::rcp(new NOX::Thyra::Group(initial_guess, model_));
+
+  using namespace NOX::StatusTest;
+  auto absolute = Teuchos::rcp(new NormF(parameters_.absolute_tolerance));
+  group->computeF();
+  auto relative = Teuchos::rcp(new NormF(*group, parameters_.relative_tolerance));
+  auto residual = Teuchos::rcp(new Combo(Combo::OR, absolute, relative));
+  auto update = Teuchos::rcp(new NormUpdate(parameters_.update_tolerance, NOX::Abstract::Vector::MaxNorm));
+  auto converged = Teuchos::rcp(new Combo(Combo::AND, residual, update));
+  auto tests = Teuchos::rcp(new Combo(Combo::OR));
+  tests->addStatusTest(converged);
+  tests->addStatusTest(Teuchos::rcp(new MaxIters(parameters_.maximum_iterations)));
+  tests->addStatusTest(Teuchos::rcp(new FiniteValue));
+
+  auto list = Teuchos::rcp(new Teuchos::ParameterList("NOX"));
+  list->set("Nonlinear Solver", "Line Search Based");
+  const std::string method = parameters_.line_search == "backtrack"    ? "Backtrack"
+                             : parameters_.line_search == "polynomial" ? "Polynomial"
+                                                                       : "Full Step";
+  auto& line_search = list->sublist("Line Search");
+  line_search.set("Method", method);
+  line_search.sublist("Backtrack").set("Max Iters", 12);
+  line_search.sublist("Backtrack").set("Minimum Step", 1e-4);
+  line_search.sublist("Polynomial").set("Max Iters", 12);
+  line_search.sublist("Polynomial").set("Minimum Step", 1e-4);
+  list->sublist("Direction").set("Method", "Newton");
+  list->sublist("Direction").sublist("Newton").sublist("Linear Solver").set(
+      "Tolerance", linear_solver_.parameters().tolerance);
+  list->sublist("Printing").set("Output Information", 0);
+  list->sublist("Solver Options").set<Teuchos::RCP<NOX::Observer>>(
+      "Observer", Teuchos::rcp(new TableObserver(result, linear_solver_, table)));
+
+  auto solver = NOX::Solver::buildSolver(group, tests, list);
+  NOX::StatusTest::StatusType status = NOX::StatusTest::Unconverged;
+  try {
+    status = solver->solve();
+  } catch (const std::exception& error) {
+    result.failure = std::string("exception in the Newton iteration: ") + error.what();
+    return result;
+  }
+  if (status != NOX::StatusTest::Converged) {
+    const auto& final_group = solver->getSolutionGroup();
+    result.failure = "no convergence after " + std::to_string(solver->getNumIterations()) +
+                     " iterations (|f| = " + std::to_string(final_group.getNormF()) + " nN" +
+                     (model_->last_evaluation().admissible ? "" : ", an element inverted") + ")";
+    return result;
+  }
+  const auto& solution = dynamic_cast<const NOX::Thyra::Vector&>(solver->getSolutionGroup().getX());
+  x.assign(*Extract::getConstTpetraVector(solution.getThyraRCPVector()));
+  result.converged = true;
+  return result;
+}
+
+}  // namespace spatula::solvers

@@ -1,0 +1,57 @@
+#pragma once
+// Newton's method with a line search (NOX, line-search based solver over the Thyra model), converging when
+//   (|f|_2 <= absolute tolerance  or  |f|_2 <= relative tolerance * |f_0|_2)  and  |dx|_inf <= update tolerance,
+// and a convergence table per step: iteration, residual norm, update norm, line-search step, negative pivots of
+// the tangent (MUMPS LDL^T inertia), seconds.
+#include "linear_solver.hpp"
+#include "spatula_model.hpp"
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace spatula::solvers {
+
+struct NewtonParameters {
+  double relative_tolerance = 1e-9;
+  double absolute_tolerance = 1e-9;    // [nN]
+  double update_tolerance = 1e-6;      // [nm] (and rad for the rotation)
+  int maximum_iterations = 25;
+  std::string line_search = "backtrack";   // a name in line_search_names()
+
+  static void declare(Teuchos::ParameterList& list);
+  static NewtonParameters from(const Teuchos::ParameterList& list);
+};
+
+const std::vector<std::string>& line_search_names();
+
+struct NewtonIteration {
+  int iteration = 0;
+  double residual_norm = 0.0;
+  double update_norm = 0.0;
+  double step = 1.0;
+  int negative_pivots = -1;
+  double seconds = 0.0;
+};
+
+struct NewtonResult {
+  bool converged = false;
+  std::string failure;   // why not, for the log
+  double initial_residual_norm = 0.0;
+  std::vector<NewtonIteration> iterations;
+};
+
+class NewtonSolver {
+public:
+  NewtonSolver(Teuchos::RCP<SpatulaModel> model, const NewtonParameters& parameters,
+               const LinearSolverFactory& linear_solver);
+  // Solves f(x) = 0 starting from x; on success x holds the solution, otherwise x is unchanged.
+  NewtonResult solve(discretization::Vector& x, std::ostream* table) const;
+
+private:
+  Teuchos::RCP<SpatulaModel> model_;
+  NewtonParameters parameters_;
+  const LinearSolverFactory& linear_solver_;
+};
+
+}  // namespace spatula::solvers
