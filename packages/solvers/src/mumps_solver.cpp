@@ -10,6 +10,7 @@
 #include <dmumps_c.h>
 #include <mpi.h>
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 #include <string>
@@ -25,6 +26,7 @@ void MumpsParameters::declare(Teuchos::ParameterList& list)
                            "LDL^T factorization (symmetric indefinite); false: LU");
   parameters::declare_int(list, "memory relaxation", 40, "MUMPS ICNTL(14): extra workspace [%]",
                           parameters::Range::closed(0, 1000));
+  parameters::declare_bool(list, "verbose", false, "print MUMPS' statistics of every analysis and factorization");
 }
 
 MumpsParameters MumpsParameters::from(const Teuchos::ParameterList& list)
@@ -32,6 +34,7 @@ MumpsParameters MumpsParameters::from(const Teuchos::ParameterList& list)
   MumpsParameters p;
   p.symmetric = list.get<bool>("symmetric");
   p.memory_relaxation = list.get<int>("memory relaxation");
+  p.verbose = list.get<bool>("verbose");
   return p;
 }
 
@@ -94,6 +97,10 @@ struct MumpsSolver::Implementation {
     icntl(id, 2) = -1;
     icntl(id, 3) = -1;
     icntl(id, 4) = 0;
+    if (parameters.verbose) {   // MUMPS' own statistics on standard output (diagnosis of a hard factorization)
+      icntl(id, 1) = icntl(id, 2) = icntl(id, 3) = 6;
+      icntl(id, 4) = 2;
+    }
     icntl(id, 5) = 0;    // assembled matrix
     icntl(id, 18) = 3;   // distributed entries
     icntl(id, 14) = parameters.memory_relaxation;
@@ -159,8 +166,16 @@ struct MumpsSolver::Implementation {
     }
     Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: linear solve (MUMPS factorization)"));
     const auto start = std::chrono::steady_clock::now();
-    id.job = 2;
-    dmumps_c(&id);
+    // Pivoting on indefinite matrices can need more workspace than the analysis estimated: retry with more.
+    for (int attempt = 0;; ++attempt) {
+      id.job = 2;
+      dmumps_c(&id);
+      const int code = infog(id, 1);
+      const bool workspace = code == -8 || code == -9 || code == -14 || code == -15 || code == -17 || code == -20;
+      if (!workspace || attempt == 4) break;
+      icntl(id, 14) = 2 * std::max(icntl(id, 14), 20);
+      ++statistics.workspace_increases;
+    }
     if (infog(id, 1) < 0) throw std::runtime_error("MUMPS factorization failed: " + describe_error(id));
     ++statistics.factorizations;
     statistics.factorization_seconds += seconds_since(start);

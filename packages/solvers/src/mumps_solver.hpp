@@ -22,6 +22,7 @@ using discretization::Operator;
 struct MumpsParameters {
   bool symmetric = true;        // LDL^T (SYM = 2); false: LU (SYM = 0)
   int memory_relaxation = 40;   // ICNTL(14), per cent
+  bool verbose = false;         // MUMPS' own statistics on standard output
   static void declare(Teuchos::ParameterList& list);
   static MumpsParameters from(const Teuchos::ParameterList& list);
 };
@@ -31,6 +32,7 @@ struct MumpsStatistics {
   int factorizations = 0;
   int solves = 0;
   int negative_pivots = -1;   // from the last factorization (symmetric mode), -1 if unknown
+  int workspace_increases = 0;   // factorizations repeated with a larger ICNTL(14)
   double analysis_seconds = 0.0, factorization_seconds = 0.0, solve_seconds = 0.0;
 };
 

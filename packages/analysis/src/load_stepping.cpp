@@ -1,0 +1,135 @@
+#include "load_stepping.hpp"
+
+#include "parameter_validation.hpp"
+
+#include <Teuchos_TimeMonitor.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+
+namespace spatula::analysis {
+
+namespace {
+
+double now()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+void StepParameters::declare(Teuchos::ParameterList& list, double initial, double minimum, double maximum)
+{
+  using parameters::Range;
+  parameters::declare_double(list, "initial", initial, "first increment", Range::positive());
+  parameters::declare_double(list, "minimum", minimum, "smallest increment before giving up", Range::positive());
+  parameters::declare_double(list, "maximum", maximum, "largest increment", Range::positive());
+  parameters::declare_int(list, "easy iterations", 4, "grow the increment after steps with at most this many "
+                          "Newton iterations", Range::closed(1, 100));
+  parameters::declare_double(list, "growth", 1.5, "increment growth factor", {1.0, 10.0, false, false});
+  parameters::declare_double(list, "cut", 0.5, "increment factor after a failed step", {0.0, 1.0, true, true});
+}
+
+StepParameters StepParameters::from(const Teuchos::ParameterList& list)
+{
+  StepParameters p;
+  p.initial = list.get<double>("initial");
+  p.minimum = list.get<double>("minimum");
+  p.maximum = list.get<double>("maximum");
+  p.easy_iterations = list.get<int>("easy iterations");
+  p.growth = list.get<double>("growth");
+  p.cut = list.get<double>("cut");
+  if (p.minimum > p.initial) parameters::fail("minimum", p.minimum, "must not exceed 'initial' = " + std::to_string(p.initial));
+  if (p.maximum < p.initial) parameters::fail("maximum", p.maximum, "must not be below 'initial' = " + std::to_string(p.initial));
+  return p;
+}
+
+LoadPath::LoadPath(solvers::SpatulaModel& model, const solvers::NewtonSolver& newton, std::ostream* log,
+                   bool convergence_tables)
+    : model_(model), newton_(newton), log_(log), tables_(convergence_tables),
+      x_(model.system().create_vector()), previous_(model.system().create_vector()), started_(now())
+{
+  auto& system = model_.system();
+  system.set_control({{true, true}});
+  points_.push_back(measure(0, -1));
+  previous_->assign(*x_);
+}
+
+LoadPoint LoadPath::measure(int iterations, int negative_pivots)
+{
+  auto& system = model_.system();
+  const auto evaluation = system.evaluate(*x_, nullptr, false);
+  LoadPoint point;
+  point.step = static_cast<int>(points_.size());
+  point.rotation = system.master(*x_, Master::rotation);
+  point.lift = system.master(*x_, Master::lift);
+  point.moment = evaluation.master_residual[0];
+  point.force = evaluation.master_residual[1];
+  point.internal_energy = evaluation.internal_energy;
+  point.newton_iterations = iterations;
+  point.negative_pivots = negative_pivots;
+  point.seconds = now() - started_;
+  if (!points_.empty()) {
+    const auto& last = points_.back();
+    point.external_work = last.external_work + 0.5 * (last.moment + point.moment) * (point.rotation - last.rotation) +
+                          0.5 * (last.force + point.force) * (point.lift - last.lift);
+  }
+  return point;
+}
+
+std::optional<Failure> LoadPath::advance(Master controlled, double target, bool other_free,
+                                         const StepParameters& steps, double unit, const Callback& on_point)
+{
+  auto& system = model_.system();
+  discretization::MasterControl control;
+  control.prescribed[static_cast<int>(controlled)] = true;
+  control.prescribed[1 - static_cast<int>(controlled)] = !other_free;
+  system.set_control(control);
+  const char* name = controlled == Master::rotation ? "theta" : "u_z";
+
+  double value = system.master(*x_, controlled);
+  double increment = steps.initial * unit;
+  previous_increment_ = 0.0;   // no predictor across a change of the controlled load
+  const double direction = target >= value ? 1.0 : -1.0;
+  auto trial = system.create_vector();
+  while (direction * (target - value) > 1e-12 * std::max(1.0, std::abs(target))) {
+    increment = std::min(increment, direction * (target - value));
+    // Secant predictor from the last two converged states (scaled to the new increment).
+    trial->assign(*x_);
+    if (previous_increment_ > 0.0) trial->update(increment / previous_increment_, *x_, -increment / previous_increment_, *previous_, 1.0);
+    system.set_master(*trial, controlled, value + direction * increment);
+    std::ostringstream table;
+    const auto result = newton_.solve(*trial, tables_ ? &table : nullptr);
+    if (!result.converged) {
+      if (log_) *log_ << table.str() << "  step to " << name << " = " << (value + direction * increment) / unit
+                      << " failed (" << result.failure << "); cutting the increment\n";
+      increment *= steps.cut;
+      if (increment < steps.minimum * unit * (1 - 1e-12)) {
+        Failure failure;
+        failure.step = static_cast<int>(points_.size());
+        failure.load = (value + direction * increment / steps.cut) / unit;
+        failure.smallest_increment = increment / steps.cut / unit;
+        failure.reason = result.failure;
+        return failure;
+      }
+      previous_increment_ = 0.0;   // no predictor after a failure
+      continue;
+    }
+    previous_->assign(*x_);
+    x_->assign(*trial);
+    previous_increment_ = increment;
+    value += direction * increment;
+    const int iterations = result.iterations.empty() ? 0 : result.iterations.back().iteration;
+    const int pivots = result.iterations.empty() ? -1 : result.iterations.back().negative_pivots;
+    points_.push_back(measure(iterations, pivots));
+    if (log_ && tables_) *log_ << table.str();
+    if (on_point) on_point(points_.back(), *x_);
+    if (iterations <= steps.easy_iterations) increment = std::min(increment * steps.growth, steps.maximum * unit);
+  }
+  return std::nullopt;
+}
+
+}  // namespace spatula::analysis

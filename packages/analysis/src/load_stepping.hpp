@@ -1,0 +1,79 @@
+#pragma once
+// Quasi-static load stepping along one end-face master (the rotation alpha or the lift w): adaptive increments
+// with cut-back on failure, a secant predictor, and the work of the reactions along the path.
+//
+// Each converged step is a LoadPoint; the run stops at the target, or with a Failure naming the step, the load,
+// the smallest increment tried and the Newton diagnosis (never a silently accepted state).
+#include "newton.hpp"
+
+#include <functional>
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+namespace spatula::analysis {
+
+using discretization::Master;
+using discretization::Vector;
+
+struct StepParameters {
+  double initial = 1.0, minimum = 1e-3, maximum = 5.0;   // increments, in the load's unit (deg or nm)
+  int easy_iterations = 4;    // grow the increment after a step that needed at most this many iterations
+  double growth = 1.5;
+  double cut = 0.5;
+
+  static void declare(Teuchos::ParameterList& list, double initial, double minimum, double maximum);
+  static StepParameters from(const Teuchos::ParameterList& list);
+};
+
+// One converged state on the load path (half-model values: the app doubles them for the full spatula).
+struct LoadPoint {
+  int step = 0;
+  double rotation = 0.0;     // alpha [rad] (theta_y = theta_s + alpha)
+  double lift = 0.0;         // w [nm], the face centre's Z displacement
+  double moment = 0.0;       // M_y on the face [nN nm]
+  double force = 0.0;        // P_z on the face [nN]
+  double internal_energy = 0.0;   // Pi_int [nN nm]
+  double external_work = 0.0;     // int M dalpha + int P dw along the path [nN nm]
+  int newton_iterations = 0;
+  int negative_pivots = -1;
+  double seconds = 0.0;      // wall time since the run began
+};
+
+struct Failure {
+  int step = 0;
+  double load = 0.0;          // the load value that could not be reached (deg or nm)
+  double smallest_increment = 0.0;
+  std::string reason;
+};
+
+class LoadPath {
+public:
+  LoadPath(solvers::SpatulaModel& model, const solvers::NewtonSolver& newton, std::ostream* log,
+           bool convergence_tables);
+
+  // The current state (starts undeformed, rotation and lift zero).
+  Vector& state() { return *x_; }
+  const LoadPoint& last() const { return points_.back(); }
+  const std::vector<LoadPoint>& points() const { return points_; }
+
+  // Moves `controlled` (prescribed) from its current value to `target`, with the other master free or held as
+  // `other_free` says. Calls `on_point` after every converged step. Returns the failure, if any.
+  using Callback = std::function<void(const LoadPoint&, const Vector&)>;
+  std::optional<Failure> advance(Master controlled, double target, bool other_free, const StepParameters& steps,
+                                 double unit, const Callback& on_point);
+
+private:
+  LoadPoint measure(int iterations, int negative_pivots);
+
+  solvers::SpatulaModel& model_;
+  const solvers::NewtonSolver& newton_;
+  std::ostream* log_;
+  bool tables_;
+  Teuchos::RCP<Vector> x_, previous_;
+  double previous_increment_ = 0.0;
+  std::vector<LoadPoint> points_;
+  double started_ = 0.0;
+};
+
+}  // namespace spatula::analysis
