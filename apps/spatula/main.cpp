@@ -6,6 +6,7 @@
 // is computed or written; input errors name the key, the value and what is allowed (exit code 2).
 #include "default_scene.hpp"
 #include "scene.hpp"
+#include "simulation.hpp"
 
 #include "mesh_output.hpp"
 #include "mesh_summary.hpp"
@@ -102,6 +103,8 @@ int main(int argc, char** argv)
       partition = mesh::partition_mesh(mesh, comm->getSize());
     }
     const auto summary = mesh::summarize(mesh, scene.mesh.level);
+    std::unique_ptr<io::OutputDirectory> directory;
+    std::unique_ptr<io::XdmfOutput> fields;
     if (root) {
       mesh::print(out, summary);
       out << "  r5 [nm]                             " << shape.r5() << "\n"
@@ -110,14 +113,34 @@ int main(int argc, char** argv)
       for (int r = 0; r < partition.ranks; ++r) out << " " << partition.elements_of(r).size();
       out << "\n";
       Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: output"));
-      io::OutputDirectory directory(scene.output.directory);
-      parameters::write_xml_file(scene.validated, directory.file("scene.xml"));
-      write_summary_files(directory, summary, shape);
-      if (scene.output.write_mesh) io::XdmfOutput(directory.file(""), "mesh", mesh, partition);
-      directory.commit();
+      directory = std::make_unique<io::OutputDirectory>(scene.output.directory);
+      parameters::write_xml_file(scene.validated, directory->file("scene.xml"));
+      write_summary_files(*directory, summary, shape);
+      if (scene.output.write_mesh || scene.loading.type != "none")
+        fields = std::make_unique<io::XdmfOutput>(directory->file(""), "mesh", mesh, partition);
+    }
+    if (scene.loading.type != "none") {
+      const auto failure =
+          app::run_simulation(scene, shape, mesh, partition, comm, directory.get(), fields.get(), out);
+      if (failure) {
+        if (root) {
+          std::ofstream(directory->file("FAILURE.txt"))
+              << "step " << failure->step << ": load " << failure->load << " not reached (smallest increment "
+              << failure->smallest_increment << "): " << failure->reason << "\n";
+          directory->abandon();
+          std::cerr << "spatula: solver failure at step " << failure->step << ", load " << failure->load
+                    << " (deg or nm) after cutting the increment to " << failure->smallest_increment << ": "
+                    << failure->reason << "\nspatula: results up to the last converged step are in "
+                    << scene.output.directory << ".incomplete/\n";
+        }
+        return 3;
+      }
+    }
+    if (root) {
+      directory->commit();
       out << "spatula: results in " << scene.output.directory << "/\n";
     }
-    Teuchos::TimeMonitor::summarize(comm.ptr(), out, false, true, false);
+    Teuchos::TimeMonitor::summarize(comm.ptr(), out, false, true, false, Teuchos::Union, "spatula:");
   } catch (const parameters::InputError& error) {
     if (root) std::cerr << "spatula: input error: " << error.what() << "\n";
     return 2;

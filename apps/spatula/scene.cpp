@@ -9,6 +9,10 @@ void OutputParameters::declare(Teuchos::ParameterList& output)
   parameters::declare_string(output, "directory", "spatula-output",
                              "directory for all results (replaced atomically at the end of the run)");
   parameters::declare_bool(output, "write mesh", true, "write the mesh as HDF5 + XDMF");
+  parameters::declare_int(output, "field interval", 0,
+                          "write displacement and I1 fields every this many converged steps (0: first and last)",
+                          parameters::Range::closed(0, 100000));
+  parameters::declare_bool(output, "convergence tables", false, "print the Newton iterations of every step");
 }
 
 OutputParameters OutputParameters::from(const Teuchos::ParameterList& output)
@@ -16,6 +20,8 @@ OutputParameters OutputParameters::from(const Teuchos::ParameterList& output)
   OutputParameters p;
   p.directory = output.get<std::string>("directory");
   p.write_mesh = output.get<bool>("write mesh");
+  p.field_interval = output.get<int>("field interval");
+  p.convergence_tables = output.get<bool>("convergence tables");
   if (p.directory.empty()) throw parameters::InputError("parameter 'Output/directory' must not be empty");
   return p;
 }
@@ -27,6 +33,12 @@ Teuchos::ParameterList valid_scene_parameters()
       parameters::declare_sublist(valid, "Geometry", "the twelve spatula parameters of the paper's Table 2 [nm]"));
   mesh::MeshParameters::declare(parameters::declare_sublist(valid, "Mesh", "hexahedral mesh density"));
   OutputParameters::declare(parameters::declare_sublist(valid, "Output", "result files"));
+  discretization::SolidParameters::declare(
+      parameters::declare_sublist(valid, "Material", "Neo-Hookean solid and its quadrature"));
+  LoadingParameters::declare(parameters::declare_sublist(valid, "Loading", "what the end face does"));
+  solvers::LinearSolverParameters::declare(
+      parameters::declare_sublist(valid, "Linear Solver", "solver of the Newton steps"));
+  solvers::NewtonParameters::declare(parameters::declare_sublist(valid, "Nonlinear Solver", "Newton's method"));
   return valid;
 }
 
@@ -37,6 +49,10 @@ Scene read_scene(Teuchos::ParameterList user)
   scene.geometry = geometry::ShapeParameters::from(user.sublist("Geometry"));
   scene.mesh = mesh::MeshParameters::from(user.sublist("Mesh"));
   scene.output = OutputParameters::from(user.sublist("Output"));
+  scene.material = discretization::SolidParameters::from(user.sublist("Material"));
+  scene.loading = LoadingParameters::from(user.sublist("Loading"));
+  scene.linear_solver = solvers::LinearSolverParameters::from(user.sublist("Linear Solver"));
+  scene.newton = solvers::NewtonParameters::from(user.sublist("Nonlinear Solver"));
   scene.validated = user;
   return scene;
 }

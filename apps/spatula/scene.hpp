@@ -1,5 +1,8 @@
 #pragma once
 // A scene: the whole XML input of one run, validated against the parameters every package declares.
+#include "discrete_system.hpp"
+#include "loading.hpp"
+#include "newton.hpp"
 #include "spatula_mesher.hpp"
 #include "spatula_shape.hpp"
 
@@ -12,6 +15,8 @@ namespace spatula::app {
 struct OutputParameters {
   std::string directory = "spatula-output";
   bool write_mesh = true;
+  int field_interval = 0;          // write fields every this many converged steps (0: start and end only)
+  bool convergence_tables = false;   // print every Newton iteration
   static void declare(Teuchos::ParameterList& output);
   static OutputParameters from(const Teuchos::ParameterList& output);
 };
@@ -20,10 +25,15 @@ struct Scene {
   geometry::ShapeParameters geometry;
   mesh::MeshParameters mesh;
   OutputParameters output;
+  discretization::SolidParameters material;
+  LoadingParameters loading;
+  solvers::LinearSolverParameters linear_solver;
+  solvers::NewtonParameters newton;
   Teuchos::ParameterList validated;   // the full list with defaults filled in (echoed to the output)
 };
 
-// All valid keys with defaults and docs, in sublists "Geometry", "Mesh", "Output".
+// All valid keys with defaults and docs, in sublists "Geometry", "Mesh", "Output", "Material", "Loading",
+// "Linear Solver", "Nonlinear Solver".
 Teuchos::ParameterList valid_scene_parameters();
 // Validates a user's list (throws parameters::InputError) and reads it into typed parameters.
 Scene read_scene(Teuchos::ParameterList user);

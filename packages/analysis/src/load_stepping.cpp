@@ -33,7 +33,7 @@ void StepParameters::declare(Teuchos::ParameterList& list, double initial, doubl
   parameters::declare_double(list, "cut", 0.5, "increment factor after a failed step", {0.0, 1.0, true, true});
 }
 
-StepParameters StepParameters::from(const Teuchos::ParameterList& list)
+StepParameters StepParameters::from(const Teuchos::ParameterList& list, const std::string& path)
 {
   StepParameters p;
   p.initial = list.get<double>("initial");
@@ -42,8 +42,10 @@ StepParameters StepParameters::from(const Teuchos::ParameterList& list)
   p.easy_iterations = list.get<int>("easy iterations");
   p.growth = list.get<double>("growth");
   p.cut = list.get<double>("cut");
-  if (p.minimum > p.initial) parameters::fail("minimum", p.minimum, "must not exceed 'initial' = " + std::to_string(p.initial));
-  if (p.maximum < p.initial) parameters::fail("maximum", p.maximum, "must not be below 'initial' = " + std::to_string(p.initial));
+  if (p.minimum > p.initial)
+    parameters::fail(parameters::key_path(path, "minimum"), p.minimum, "must not exceed 'initial' = " + std::to_string(p.initial));
+  if (p.maximum < p.initial)
+    parameters::fail(parameters::key_path(path, "maximum"), p.maximum, "must not be below 'initial' = " + std::to_string(p.initial));
   return p;
 }
 

@@ -23,7 +23,7 @@ struct StepParameters {
   double cut = 0.5;
 
   static void declare(Teuchos::ParameterList& list, double initial, double minimum, double maximum);
-  static StepParameters from(const Teuchos::ParameterList& list);
+  static StepParameters from(const Teuchos::ParameterList& list, const std::string& path);
 };
 
 // One converged state on the load path (half-model values: the app doubles them for the full spatula).

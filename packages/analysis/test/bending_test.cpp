@@ -157,3 +157,47 @@ TEST(SpatulaRotation, SameReactionsOnAllRanksAndOnOne)
   EXPECT_GT(results[0].moment, 0.0);
   EXPECT_NEAR(results[0].force, 0.0, 1e-9);   // zero net Z force on the face: w is free
 }
+
+// A far too large first increment (the elements next to the rotated face would invert): the step is cut back
+// until Newton converges, and every recorded state is finite.
+TEST(Bending, OversizedStepsAreCutBackNeverAcceptedBroken)
+{
+  Bar bar;
+  Solver solver(bar.mesh, bar.constraints(), Teuchos::DefaultComm<int>::getComm());
+  LoadPath path(*solver.model, *solver.newton, nullptr, false);
+  analysis::StepParameters steps;
+  steps.initial = 120.0;
+  steps.maximum = 120.0;
+  steps.minimum = 0.5;
+  const double degree = pi / 180.0;
+  ASSERT_FALSE(path.advance(Master::rotation, 120.0 * degree, true, steps, degree, {}).has_value());
+  EXPECT_NEAR(path.last().rotation, 120.0 * degree, 1e-12);
+  EXPECT_GT(path.points().size(), 3u);   // it had to take smaller steps
+  for (const auto& point : path.points()) {
+    EXPECT_TRUE(std::isfinite(point.moment));
+    EXPECT_TRUE(std::isfinite(point.internal_energy));
+  }
+  EXPECT_NEAR(path.last().internal_energy / path.last().external_work, 1.0, 2e-3);
+}
+
+// When the increment cannot be made small enough the run stops with a diagnosis instead of accepting a state.
+TEST(Bending, UnreachableLoadReportsTheFailure)
+{
+  Bar bar;
+  solvers::NewtonParameters newton;
+  newton.maximum_iterations = 1;   // Newton cannot converge in one iteration from any useful increment
+  newton.relative_tolerance = 1e-14;
+  newton.absolute_tolerance = 0.0;
+  Solver solver(bar.mesh, bar.constraints(), Teuchos::DefaultComm<int>::getComm(), newton);
+  LoadPath path(*solver.model, *solver.newton, nullptr, false);
+  analysis::StepParameters steps;
+  steps.initial = 10.0;
+  steps.minimum = 1.0;
+  const double degree = pi / 180.0;
+  const auto failure = path.advance(Master::rotation, 30.0 * degree, true, steps, degree, {});
+  ASSERT_TRUE(failure.has_value());
+  EXPECT_EQ(failure->step, 1);
+  EXPECT_LT(failure->smallest_increment, 2.0);
+  EXPECT_NE(failure->reason.find("no convergence"), std::string::npos) << failure->reason;
+  EXPECT_EQ(path.points().size(), 1u);   // nothing accepted
+}

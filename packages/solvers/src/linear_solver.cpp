@@ -152,11 +152,8 @@ Teuchos::RCP<Teuchos::ParameterList> stratimikos_list(const LinearSolverParamete
     gmres.set("Num Blocks", std::min(p.maximum_iterations, 200));
     list->set("Preconditioner Type", "Ifpack2");
     auto& ifpack2 = list->sublist("Preconditioner Types").sublist("Ifpack2");
-    ifpack2.set("Prec Type", "SCHWARZ");
-    auto& settings = ifpack2.sublist("Ifpack2 Settings");
-    settings.set("schwarz: overlap level", 1);
-    settings.set("schwarz: inner preconditioner name", "RILUK");
-    settings.sublist("schwarz: inner preconditioner parameters").set("fact: iluk level-of-fill", p.fill_level);
+    ifpack2.set("Prec Type", "RILUK");   // on each rank's rows (block Jacobi between ranks)
+    ifpack2.sublist("Ifpack2 Settings").set("fact: iluk level-of-fill", p.fill_level);
   }
   return list;
 }

@@ -3,7 +3,7 @@
 //
 //   mumps      MUMPS LDL^T (or LU) direct solve, wrapped as an exact preconditioner of Belos GMRES (which then
 //              converges in one iteration and refines the direct solution); correct on any number of ranks.
-//   gmres-ilu  Belos GMRES with an Ifpack2 additive Schwarz preconditioner (overlap 1, ILU(k) on each block).
+//   gmres-ilu  Belos GMRES with Ifpack2 ILU(k) of each rank's rows (block Jacobi across ranks).
 //
 // The MUMPS factorization object lives as long as the factory, so its symbolic analysis is reused by every
 // Newton iteration and load step.

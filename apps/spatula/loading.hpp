@@ -1,0 +1,27 @@
+#pragma once
+// What a scene does with the spatula: mesh only, peel by rotating the end face, or pull off by lifting it at a
+// fixed inclination (after rotating there). A registry maps each "Loading/type" name to its run.
+#include "load_stepping.hpp"
+
+#include <Teuchos_ParameterList.hpp>
+
+#include <string>
+#include <vector>
+
+namespace spatula::app {
+
+struct LoadingParameters {
+  std::string type = "none";
+  double theta_y = 30.0;          // rotation: final inclination; lift: the inclination held [deg]
+  double final_lift = 100.0;      // lift: u_z of the face centre at the end, from the undeformed state [nm]
+  bool free_lift = true;          // while rotating: zero net Z force on the face (else u_z held at 0)
+  bool hold_contact_surface = false;   // the pad's bottom held at Z = 0 (a check without adhesion)
+  analysis::StepParameters rotation_steps, lift_steps;
+
+  static void declare(Teuchos::ParameterList& loading);
+  static LoadingParameters from(const Teuchos::ParameterList& loading);
+};
+
+const std::vector<std::string>& loading_types();
+
+}  // namespace spatula::app

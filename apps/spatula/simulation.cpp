@@ -1,0 +1,109 @@
+#include "simulation.hpp"
+
+#include <Teuchos_TimeMonitor.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+
+namespace spatula::app {
+
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+constexpr double degree = pi / 180.0;
+
+// curve.csv: one row per converged state, full-spatula values (the model is half of it).
+class CurveWriter {
+public:
+  CurveWriter(const std::string& file, double young) : out_(file), young_(young)
+  {
+    out_ << "step,stage,theta_y_deg,u_z_nm,M_y_nNnm,M_y_per_ER0^3,P_z_nN,P_z_per_ER0^2,Pi_int_1e-18J,"
+            "Pi_ext_1e-18J,newton_iterations,negative_pivots,wall_s\n";
+    out_ << std::setprecision(10);
+  }
+  void write(const analysis::LoadPoint& p, const char* stage, double theta_s)
+  {
+    out_ << p.step << "," << stage << "," << (theta_s + p.rotation) / degree << "," << p.lift << ","
+         << 2 * p.moment << "," << 2 * p.moment / young_ << "," << 2 * p.force << "," << 2 * p.force / young_ << ","
+         << 2 * p.internal_energy << "," << 2 * p.external_work << "," << p.newton_iterations << ","
+         << p.negative_pivots << "," << p.seconds << "\n";
+    out_.flush();
+  }
+
+private:
+  std::ofstream out_;
+  double young_;
+};
+
+}  // namespace
+
+std::optional<analysis::Failure> run_simulation(const Scene& scene, const geometry::SpatulaShape& shape,
+                                                const mesh::HexMesh& mesh, const mesh::Partition& partition,
+                                                Teuchos::RCP<const Teuchos::Comm<int>> comm,
+                                                const io::OutputDirectory* directory, io::XdmfOutput* fields,
+                                                std::ostream& out)
+{
+  const bool root = comm->getRank() == 0;
+  const auto p1 = shape.point(1);
+  const auto constraints =
+      discretization::spatula_constraints(mesh, {p1.x, p1.y, p1.z}, scene.loading.hold_contact_surface);
+  auto system = Teuchos::rcp(new discretization::DiscreteSystem(mesh, partition, constraints, scene.material, comm));
+  solvers::LinearSolverFactory linear(scene.linear_solver);
+  auto model = Teuchos::rcp(new solvers::SpatulaModel(system, linear.lows_factory()));
+  solvers::NewtonSolver newton(model, scene.newton, linear);
+  analysis::LoadPath path(*model, newton, root ? &out : nullptr, scene.output.convergence_tables);
+
+  const double theta_s = shape.theta_s(), young = scene.material.young;
+  std::unique_ptr<CurveWriter> curve;
+  if (root) curve = std::make_unique<CurveWriter>(directory->file("curve.csv"), young);
+  const char* stage = "rotation";
+  auto write_fields = [&](const discretization::Vector& x, double time) {
+    io::FieldState state;
+    state.time = time;
+    state.displacement = system->node_displacements(x);
+    auto trace = system->element_cauchy_trace(x);
+    for (auto& value : trace) value /= young;
+    state.cell_scalars["I1"] = std::move(trace);   // the paper's colour scale: tr(sigma) / E
+    if (fields) fields->add_state(state);
+  };
+  auto on_point = [&](const analysis::LoadPoint& p, const discretization::Vector& x) {
+    if (root) {
+      curve->write(p, stage, theta_s);
+      out << "step " << std::setw(4) << p.step << "  " << stage << "  theta_y " << std::fixed << std::setprecision(3)
+          << std::setw(8) << (theta_s + p.rotation) / degree << " deg  u_z " << std::setw(9) << p.lift
+          << " nm  M_y " << std::setprecision(4) << std::setw(10) << 2 * p.moment << " nN nm  P_z " << std::setw(9)
+          << 2 * p.force << " nN  Pi_int " << std::setw(9) << 2 * p.internal_energy << "  newton "
+          << p.newton_iterations << "  neg.piv " << p.negative_pivots << "  " << std::setprecision(1)
+          << p.seconds << " s" << std::defaultfloat << std::endl;
+    }
+    const int interval = scene.output.field_interval;
+    if (interval > 0 && p.step % interval == 0)
+      write_fields(x, std::string(stage) == "rotation" ? (theta_s + p.rotation) / degree : p.lift);
+  };
+
+  if (root) curve->write(path.last(), stage, theta_s);
+  write_fields(path.state(), theta_s / degree);
+  const auto& loading = scene.loading;
+  auto failure = path.advance(discretization::Master::rotation, loading.theta_y * degree - theta_s, loading.free_lift,
+                              loading.rotation_steps, degree, on_point);
+  if (!failure && loading.type == "lift") {
+    stage = "lift";
+    failure = path.advance(discretization::Master::lift, loading.final_lift, false, loading.lift_steps, 1.0, on_point);
+  }
+  const auto& last = path.last();
+  if (scene.output.field_interval == 0 || last.step % scene.output.field_interval != 0)
+    write_fields(path.state(), std::string(stage) == "rotation" ? (theta_s + last.rotation) / degree : last.lift);
+  if (root) {
+    const auto& statistics = linear.mumps_statistics();
+    out << "solver: " << model->counters().jacobians << " tangents, " << model->counters().residuals
+        << " residual-only evaluations, " << model->counters().inadmissible << " inadmissible trial states";
+    if (statistics.factorizations > 0)
+      out << "; MUMPS: " << statistics.analyses << " analyses, " << statistics.factorizations << " factorizations ("
+          << statistics.factorization_seconds << " s), " << statistics.solves << " solves";
+    out << "\n";
+  }
+  return failure;
+}
+
+}  // namespace spatula::app
