@@ -2,7 +2,7 @@
 
 #include "element_scatter.hpp"
 #include "parameter_validation.hpp"
-#include "solid_hex8.hpp"
+#include "solid_element.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
 #include <Tpetra_Assembly_Helpers.hpp>
@@ -36,10 +36,11 @@ namespace {
 template <class T>
 using DeviceView = Kokkos::View<T, device_type>;
 
-// Bulk solid: one Hex8 kernel per local element; reduces the energy, reports an inverted element.
+// Bulk solid: one element per work item (Hex8 or Hex13); reduces the energy, reports an inverted element.
+template <class Shape>
 struct SolidKernel {
   ElementScatter scatter;
-  DeviceView<const int* [8]> element_nodes;
+  DeviceView<const int**> element_nodes;
   DeviceView<const std::int64_t*> element_ids;
   DeviceView<const double* [3]> coordinates;
   DeviceView<std::int64_t[1]> inverted;   // global id + 1 of an inverted element, 0 if none
@@ -48,36 +49,74 @@ struct SolidKernel {
 
   KOKKOS_INLINE_FUNCTION void operator()(const int element, double& energy) const
   {
-    int nodes[8];
-    double X[8][3], u[8][3];
-    for (int a = 0; a < 8; ++a) {
+    constexpr int n = Shape::nodes;
+    int nodes[n];
+    double X[n][3], u[n][3];
+    for (int a = 0; a < n; ++a) {
       nodes[a] = element_nodes(element, a);
       for (int i = 0; i < 3; ++i) X[a][i] = coordinates(nodes[a], i);
       scatter.displacement(nodes[a], u[a]);
     }
-    double element_energy, r[24], K[24][24];
-    const auto status = elements::hex8_solid(law, X, u, order, element_energy, r, scatter.with_matrix ? K : nullptr);
+    double element_energy, r[3 * n], K[3 * n][3 * n];
+    const auto status =
+        elements::solid_element<Shape>(law, X, u, order, element_energy, r, scatter.with_matrix ? K : nullptr);
     if (status != elements::ElementStatus::ok) {
       Kokkos::atomic_fetch_max(&inverted(0), element_ids(element) + 1);
       return;
     }
     energy += element_energy;
-    scatter.add<8>(nodes, r, K);
+    scatter.add<n>(nodes, r, K);
   }
 };
+
+// Undeformed area of a contact face (its corners span the bilinear reference face).
+double face_area(const NodeSpace& space, const std::array<std::int64_t, 9>& face)
+{
+  double area = 0.0;
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b) {
+      double s, t, ws, wt, N[4], dN[4][2];
+      elements::gauss_point(2, a, s, ws);
+      elements::gauss_point(2, b, t, wt);
+      elements::Quad4Surface::evaluate(s, t, N, dN);
+      double Xs[3] = {0, 0, 0}, Xt[3] = {0, 0, 0};
+      for (int k = 0; k < 4; ++k)
+        for (int i = 0; i < 3; ++i) {
+          Xs[i] += dN[k][0] * space.coordinates[face[k]][i];
+          Xt[i] += dN[k][1] * space.coordinates[face[k]][i];
+        }
+      area += std::hypot(Xs[1] * Xt[2] - Xs[2] * Xt[1], Xs[2] * Xt[0] - Xs[0] * Xt[2], Xs[0] * Xt[1] - Xs[1] * Xt[0]) *
+              ws * wt;
+    }
+  return area;
+}
+
+template <class T>
+DeviceView<T*> to_device(const std::string& label, const std::vector<T>& values)
+{
+  DeviceView<T*> view(label, values.size());
+  auto host = Kokkos::create_mirror_view(view);
+  for (std::size_t i = 0; i < values.size(); ++i) host(i) = values[i];
+  Kokkos::deep_copy(view, host);
+  return view;
+}
 
 }  // namespace
 
 struct DiscreteSystem::Implementation {
   Teuchos::RCP<const Teuchos::Comm<int>> comm;
   const mesh::HexMesh& mesh;
+  NodeSpace space;
   DofLayout layout;
   SolidParameters solid;
+  SystemOptions options;
   MasterControl control;
-  std::array<double, 3> face_centre{};
+  std::array<double, 3> face_centre{}, lift_direction{};
 
-  std::vector<std::int64_t> elements;         // this rank's elements (global ids)
-  std::vector<std::int64_t> local_nodes;      // nodes touched by them
+  std::vector<std::int64_t> hex8;         // this rank's Hex8 elements (mesh ids)
+  std::vector<std::size_t> hex13;         // this rank's Hex13 elements (indices into space.hex13_nodes)
+  std::vector<std::size_t> faces;         // this rank's contact faces (indices into space.faces)
+  std::vector<std::int64_t> local_nodes;  // nodes touched by them
   Teuchos::RCP<const Map> owned, overlap;     // unknowns: owned, and owned + shared (owned first)
   Teuchos::RCP<const Import> importer;
   Teuchos::RCP<FECrsGraph> graph;
@@ -85,33 +124,50 @@ struct DiscreteSystem::Implementation {
   Teuchos::RCP<FEMultiVector> residual;
   Teuchos::RCP<Vector> state;                 // on the overlap map
   std::array<int, master_count> master_unknown{-1, -1};
+  double half_contact_area = 0.0;
 
-  DeviceView<int* [8]> element_nodes;
-  DeviceView<std::int64_t*> element_ids;
+  DeviceView<int**> hex8_nodes, hex13_nodes;
+  DeviceView<std::int64_t*> hex8_ids, hex13_ids;
   DeviceView<double* [3]> coordinates;
   DeviceView<int* [3]> node_unknown;
   DeviceView<double* [3]> node_offset;
+  DeviceView<int* [2]> node_parent;
   DeviceView<int*> column_of;
+  ContactFaceViews contact_faces;
 
   Implementation(const mesh::HexMesh& mesh_, const mesh::Partition& partition, const Constraints& constraints,
-                 const SolidParameters& solid_, Teuchos::RCP<const Teuchos::Comm<int>> comm_)
-      : comm(std::move(comm_)), mesh(mesh_), layout(make_dof_layout(mesh_, partition, constraints)), solid(solid_),
-        face_centre(constraints.rigid_centre)
+                 const SolidParameters& solid_, Teuchos::RCP<const Teuchos::Comm<int>> comm_,
+                 const SystemOptions& options_)
+      : comm(std::move(comm_)), mesh(mesh_), space(make_node_space(mesh_, partition, options_.enrichment)),
+        layout(make_dof_layout(space, constraints, partition.ranks)), solid(solid_), options(options_),
+        face_centre(constraints.rigid_centre), lift_direction(constraints.lift_direction)
   {
     const int rank = comm->getRank();
-    elements = partition.elements_of(rank);
-    std::vector<int> local_of(mesh.node_count(), -1);
-    for (auto e : elements)
-      for (auto n : mesh.elements[e])
-        if (local_of[n] < 0) {
-          local_of[n] = static_cast<int>(local_nodes.size());
-          local_nodes.push_back(n);
-        }
+    for (auto e : space.hex8_elements)
+      if (partition.element_owner[e] == rank) hex8.push_back(e);
+    for (std::size_t k = 0; k < space.hex13_elements.size(); ++k)
+      if (partition.element_owner[space.hex13_elements[k]] == rank) hex13.push_back(k);
+    if (options.contact)
+      for (std::size_t k = 0; k < space.faces.size(); ++k)
+        if (partition.element_owner[space.face_elements[k]] == rank) faces.push_back(k);
+
+    std::vector<int> local_of(space.node_count(), -1);
+    auto touch = [&](std::int64_t n) {
+      if (local_of[n] >= 0) return;
+      local_of[n] = static_cast<int>(local_nodes.size());
+      local_nodes.push_back(n);
+    };
+    for (auto e : hex8)
+      for (auto n : mesh.elements[e]) touch(n);
+    for (auto k : hex13)
+      for (auto n : space.hex13_nodes[k]) touch(n);
 
     // Unknowns: owned block, then the shared ones this rank's elements touch.
     std::vector<GlobalOrdinal> owned_ids, shared_ids;
     for (auto id = layout.rank_offsets[rank]; id < layout.rank_offsets[rank + 1]; ++id) owned_ids.push_back(id);
-    auto is_owned = [&](std::int64_t id) { return id >= layout.rank_offsets[rank] && id < layout.rank_offsets[rank + 1]; };
+    auto is_owned = [&](std::int64_t id) {
+      return id >= layout.rank_offsets[rank] && id < layout.rank_offsets[rank + 1];
+    };
     bool touches_face = false;
     for (auto n : local_nodes) {
       touches_face |= layout.rigid[n] != 0;
@@ -146,50 +202,97 @@ struct DiscreteSystem::Implementation {
     Kokkos::deep_copy(column_of, columns);
   }
 
+  template <std::size_t n>
+  DeviceView<int**> connectivity(const std::string& label, const std::vector<std::array<std::int64_t, n>>& nodes,
+                                 const std::vector<int>& local_of)
+  {
+    DeviceView<int**> view(label, nodes.size(), n);
+    auto host = Kokkos::create_mirror_view(view);
+    for (std::size_t e = 0; e < nodes.size(); ++e)
+      for (std::size_t a = 0; a < n; ++a) host(e, a) = nodes[e][a] < 0 ? -1 : local_of[nodes[e][a]];
+    Kokkos::deep_copy(view, host);
+    return view;
+  }
+
   void build_views(const std::vector<int>& local_of)
   {
-    element_nodes = DeviceView<int* [8]>("element nodes", elements.size());
-    element_ids = DeviceView<std::int64_t*>("element ids", elements.size());
-    coordinates = DeviceView<double* [3]>("node coordinates", local_nodes.size());
-    node_unknown = DeviceView<int* [3]>("node unknowns", local_nodes.size());
-    node_offset = DeviceView<double* [3]>("rigid offsets", local_nodes.size());
+    std::vector<std::array<std::int64_t, 8>> hex8_list;
+    for (auto e : hex8) hex8_list.push_back(mesh.elements[e]);
+    std::vector<std::array<std::int64_t, 13>> hex13_list;
+    std::vector<std::int64_t> hex13_elements;
+    for (auto k : hex13) {
+      hex13_list.push_back(space.hex13_nodes[k]);
+      hex13_elements.push_back(space.hex13_elements[k]);
+    }
+    std::vector<std::array<std::int64_t, 9>> face_list;
+    for (auto k : faces) face_list.push_back(space.faces[k]);
+    hex8_nodes = connectivity("hex8 nodes", hex8_list, local_of);
+    hex13_nodes = connectivity("hex13 nodes", hex13_list, local_of);
+    hex8_ids = to_device("hex8 ids", hex8);
+    hex13_ids = to_device("hex13 ids", hex13_elements);
+
+    const auto count = local_nodes.size();
+    coordinates = DeviceView<double* [3]>("node coordinates", count);
+    node_unknown = DeviceView<int* [3]>("node unknowns", count);
+    node_offset = DeviceView<double* [3]>("rigid offsets", count);
+    node_parent = DeviceView<int* [2]>("dependent parents", count);
     column_of = DeviceView<int*>("column of unknown", overlap->getNodeNumElements());
-    auto h_elements = Kokkos::create_mirror_view(element_nodes);
-    auto h_ids = Kokkos::create_mirror_view(element_ids);
     auto h_coordinates = Kokkos::create_mirror_view(coordinates);
     auto h_unknown = Kokkos::create_mirror_view(node_unknown);
     auto h_offset = Kokkos::create_mirror_view(node_offset);
-    for (std::size_t e = 0; e < elements.size(); ++e) {
-      h_ids(e) = elements[e];
-      for (int a = 0; a < 8; ++a) h_elements(e, a) = local_of[mesh.elements[elements[e]][a]];
-    }
-    for (std::size_t n = 0; n < local_nodes.size(); ++n) {
+    auto h_parent = Kokkos::create_mirror_view(node_parent);
+    for (std::size_t n = 0; n < count; ++n) {
       const auto node = local_nodes[n];
+      for (int p = 0; p < 2; ++p) h_parent(n, p) = space.dependent[node] ? local_of[space.corners[node][p]] : -1;
       for (int i = 0; i < 3; ++i) {
-        h_coordinates(n, i) = mesh.coordinates[node][i];
-        h_offset(n, i) = mesh.coordinates[node][i] - face_centre[i];
+        h_coordinates(n, i) = space.coordinates[node][i];
+        h_offset(n, i) = space.coordinates[node][i] - face_centre[i];
         const auto id = layout.node_dofs[node][i];
-        h_unknown(n, i) = layout.rigid[node] ? rigid_component
-                          : id < 0           ? fixed_component
-                                             : overlap->getLocalElement(id);
+        h_unknown(n, i) = layout.rigid[node]        ? rigid_component
+                          : space.dependent[node]   ? dependent_component
+                          : id < 0                  ? fixed_component
+                                                    : overlap->getLocalElement(id);
       }
     }
-    Kokkos::deep_copy(element_nodes, h_elements);
-    Kokkos::deep_copy(element_ids, h_ids);
     Kokkos::deep_copy(coordinates, h_coordinates);
     Kokkos::deep_copy(node_unknown, h_unknown);
     Kokkos::deep_copy(node_offset, h_offset);
+    Kokkos::deep_copy(node_parent, h_parent);
+
+    // Contact faces and their undeformed areas.
+    contact_faces.face_nodes = space.face_nodes;
+    contact_faces.count = static_cast<int>(face_list.size());
+    contact_faces.coordinates = coordinates;
+    auto face_view = DeviceView<int* [9]>("contact faces", face_list.size());
+    auto h_faces = Kokkos::create_mirror_view(face_view);
+    std::vector<double> areas;
+    for (std::size_t f = 0; f < face_list.size(); ++f) {
+      for (int k = 0; k < 9; ++k) h_faces(f, k) = face_list[f][k] < 0 ? -1 : local_of[face_list[f][k]];
+      areas.push_back(face_area(space, face_list[f]));
+    }
+    Kokkos::deep_copy(face_view, h_faces);
+    contact_faces.nodes = face_view;
+    contact_faces.areas = to_device("contact face areas", areas);
+    half_contact_area = 0.0;
+    for (const auto& face : space.faces) half_contact_area += face_area(space, face);
   }
 
-  // The unknowns an element couples: its free components and, if it touches the end face, both masters.
-  std::vector<GlobalOrdinal> element_unknowns(std::int64_t e) const
+  // The unknowns an element couples: its nodes' free components (a dependent node's through its corners) and,
+  // if it touches the end face, both masters.
+  template <class Nodes>
+  std::vector<GlobalOrdinal> element_unknowns(const Nodes& nodes) const
   {
     std::vector<GlobalOrdinal> ids;
     bool rigid = false;
-    for (auto n : mesh.elements[e]) {
+    for (auto n : nodes) {
+      if (n < 0) continue;
       rigid |= layout.rigid[n] != 0;
-      for (auto id : layout.node_dofs[n])
-        if (id >= 0) ids.push_back(id);
+      const auto& sources = space.dependent[n] ? std::array<std::int64_t, 2>{space.corners[n][0], space.corners[n][1]}
+                                               : std::array<std::int64_t, 2>{n, -1};
+      for (auto source : sources)
+        if (source >= 0)
+          for (auto id : layout.node_dofs[source])
+            if (id >= 0) ids.push_back(id);
     }
     if (rigid) ids.insert(ids.end(), layout.masters.begin(), layout.masters.end());
     std::sort(ids.begin(), ids.end());
@@ -201,13 +304,14 @@ struct DiscreteSystem::Implementation {
   {
     Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: graph"));
     std::vector<std::vector<GlobalOrdinal>> rows(overlap->getNodeNumElements());
-    for (auto e : elements) {
-      const auto ids = element_unknowns(e);
+    auto add_clique = [&](const std::vector<GlobalOrdinal>& ids) {
       for (auto row : ids) {
         auto& entries = rows[overlap->getLocalElement(row)];
         entries.insert(entries.end(), ids.begin(), ids.end());
       }
-    }
+    };
+    for (auto e : hex8) add_clique(element_unknowns(mesh.elements[e]));
+    for (auto k : hex13) add_clique(element_unknowns(space.hex13_nodes[k]));
     Kokkos::DualView<std::size_t*, device_type> counts("row counts", rows.size());
     for (std::size_t lid = 0; lid < rows.size(); ++lid) {
       auto& entries = rows[lid];
@@ -225,22 +329,24 @@ struct DiscreteSystem::Implementation {
     Tpetra::endAssembly(*graph);
   }
 
-  ElementScatter make_scatter(double alpha, double lift, bool with_residual, bool with_matrix)
+  ElementScatter make_scatter(double alpha, double lift, bool with_matrix)
   {
     ElementScatter scatter;
     scatter.column_of = column_of;
     scatter.node_unknown = node_unknown;
     scatter.node_offset = node_offset;
+    scatter.node_parent = node_parent;
     for (int m = 0; m < master_count; ++m) {
       scatter.master_unknown[m] = master_unknown[m];
       scatter.master_prescribed[m] = control.prescribed[m];
     }
+    for (int i = 0; i < 3; ++i) scatter.lift_direction[i] = lift_direction[i];
     scatter.alpha = alpha;
     scatter.lift = lift;
-    scatter.with_residual = with_residual;
+    scatter.with_residual = true;
     scatter.with_matrix = with_matrix;
     scatter.state = state->getLocalViewDevice(Tpetra::Access::ReadOnly);
-    if (with_residual) scatter.residual = residual->getLocalViewDevice(Tpetra::Access::ReadWrite);
+    scatter.residual = residual->getLocalViewDevice(Tpetra::Access::ReadWrite);
     if (with_matrix) scatter.matrix = matrix->getLocalMatrixDevice();
     return scatter;
   }
@@ -255,12 +361,24 @@ struct DiscreteSystem::Implementation {
     return value;
   }
 
+  template <class Shape>
+  double solid_block(const char* label, const ElementScatter& scatter, const DeviceView<int**>& nodes,
+                     const DeviceView<std::int64_t*>& ids, const DeviceView<std::int64_t[1]>& inverted)
+  {
+    double energy = 0.0;
+    const int order = Shape::nodes == 13 ? std::max(solid.quadrature_order, 3) : solid.quadrature_order;
+    SolidKernel<Shape> kernel{scatter, nodes, ids, coordinates, inverted,
+                              laws::NeoHookean::from_young(solid.young, solid.poisson), order};
+    Kokkos::parallel_reduce(label, Kokkos::RangePolicy<execution_space>(0, static_cast<int>(nodes.extent(0))),
+                            kernel, energy);
+    return energy;
+  }
+
   Evaluation evaluate(const Vector& x, Vector* out_residual, bool with_jacobian)
   {
     Evaluation result;
     state->doImport(x, *importer, Tpetra::INSERT);
     const double alpha = master_value(x, Master::rotation), lift = master_value(x, Master::lift);
-    const bool with_residual = true;   // always: the reactions and the energy come with it
     Tpetra::beginAssembly(*residual);
     residual->putScalar(0.0);
     if (with_jacobian) {
@@ -269,15 +387,24 @@ struct DiscreteSystem::Implementation {
     }
     DeviceView<std::int64_t[1]> inverted("inverted element");
     double energy = 0.0;
+    ContactTotals contact;
     {
-      Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer(with_jacobian ? "spatula: assembly bulk (residual + tangent)"
-                                                                                  : "spatula: assembly bulk (residual)"));
-      SolidKernel kernel{make_scatter(alpha, lift, with_residual, with_jacobian), element_nodes, element_ids,
-                         coordinates, inverted,
-                         laws::NeoHookean::from_young(solid.young, solid.poisson), solid.quadrature_order};
-      Kokkos::parallel_reduce("spatula: solid hex8 assembly",
-                              Kokkos::RangePolicy<execution_space>(0, static_cast<int>(elements.size())), kernel,
-                              energy);
+      const auto scatter = make_scatter(alpha, lift, with_jacobian);
+      {
+        Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer(
+            with_jacobian ? "spatula: assembly bulk (residual + tangent)" : "spatula: assembly bulk (residual)"));
+        energy += solid_block<elements::Hex8Shape>("spatula: solid hex8 assembly", scatter, hex8_nodes, hex8_ids,
+                                                   inverted);
+        energy += solid_block<elements::Hex13Shape>("spatula: solid hex13 assembly", scatter, hex13_nodes, hex13_ids,
+                                                    inverted);
+        Kokkos::fence();
+      }
+      if (options.contact) {
+        Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer(
+            with_jacobian ? "spatula: assembly contact (residual + tangent)" : "spatula: assembly contact (residual)"));
+        contact = options.contact->assemble(contact_faces, scatter);
+        Kokkos::fence();
+      }
       // Identity rows of prescribed masters (their owner adds the diagonal once).
       if (with_jacobian) {
         auto local = matrix->getLocalMatrixDevice();
@@ -292,8 +419,8 @@ struct DiscreteSystem::Implementation {
                                  local.sumIntoValues(unknown, &column, 1, &one, false, true);
                                });
         }
+        Kokkos::fence();
       }
-      Kokkos::fence();
     }
     {
       Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: assembly communication"));
@@ -304,7 +431,14 @@ struct DiscreteSystem::Implementation {
     Kokkos::deep_copy(h_inverted, inverted);
     std::int64_t bad = h_inverted(0);
     Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, bad, Teuchos::outArg(bad));
-    Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, energy, Teuchos::outArg(result.internal_energy));
+    double sums[2] = {energy, contact.energy}, totals[2];
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 2, sums, totals);
+    int counts[2] = {contact.active_faces, contact.skipped_faces}, count_totals[2];
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 2, counts, count_totals);
+    result.internal_energy = totals[0];
+    result.contact_energy = totals[1];
+    result.active_contact_faces = count_totals[0];
+    result.skipped_contact_faces = count_totals[1];
     result.admissible = bad == 0;
     result.inverted_element = bad - 1;
 
@@ -325,8 +459,8 @@ struct DiscreteSystem::Implementation {
 
 DiscreteSystem::DiscreteSystem(const mesh::HexMesh& mesh, const mesh::Partition& partition,
                                const Constraints& constraints, const SolidParameters& solid,
-                               Teuchos::RCP<const Teuchos::Comm<int>> comm)
-    : implementation_(std::make_unique<Implementation>(mesh, partition, constraints, solid, std::move(comm)))
+                               Teuchos::RCP<const Teuchos::Comm<int>> comm, const SystemOptions& options)
+    : implementation_(std::make_unique<Implementation>(mesh, partition, constraints, solid, std::move(comm), options))
 {
 }
 
@@ -336,6 +470,8 @@ Teuchos::RCP<const Map> DiscreteSystem::owned_map() const { return implementatio
 Teuchos::RCP<Vector> DiscreteSystem::create_vector() const { return Teuchos::rcp(new Vector(implementation_->owned)); }
 Teuchos::RCP<CrsMatrix> DiscreteSystem::jacobian() const { return implementation_->matrix; }
 const DofLayout& DiscreteSystem::layout() const { return implementation_->layout; }
+const NodeSpace& DiscreteSystem::nodes() const { return implementation_->space; }
+double DiscreteSystem::contact_area() const { return implementation_->half_contact_area; }
 void DiscreteSystem::set_control(const MasterControl& control) { implementation_->control = control; }
 const MasterControl& DiscreteSystem::control() const { return implementation_->control; }
 
@@ -354,60 +490,94 @@ Evaluation DiscreteSystem::evaluate(const Vector& x, Vector* residual, bool with
 
 void DiscreteSystem::set_displacements(Vector& x, const std::vector<double>& u) const
 {
-  const auto& layout = implementation_->layout;
+  const auto& impl = *implementation_;
   const auto map = x.getMap();
   auto values = x.getDataNonConst(0);
-  for (std::size_t n = 0; n < layout.node_dofs.size(); ++n)
-    for (int i = 0; i < 3; ++i) {
-      const auto id = layout.node_dofs[n][i];
-      if (id >= 0 && map->isNodeGlobalElement(id)) values[map->getLocalElement(id)] = u[3 * n + i];
+  for (std::int64_t n = 0; n < impl.space.node_count(); ++n) {
+    double value[3] = {0, 0, 0};
+    if (n < impl.space.mesh_nodes) {
+      for (int i = 0; i < 3; ++i) value[i] = u[3 * n + i];
+    } else {   // an enrichment node: the mean of its corners (the field stays the mesh's)
+      int corners = 0;
+      for (auto c : impl.space.corners[n])
+        if (c >= 0) {
+          ++corners;
+          for (int i = 0; i < 3; ++i) value[i] += u[3 * c + i];
+        }
+      for (int i = 0; i < 3; ++i) value[i] /= corners;
     }
+    for (int i = 0; i < 3; ++i) {
+      const auto id = impl.layout.node_dofs[n][i];
+      if (id >= 0 && map->isNodeGlobalElement(id)) values[map->getLocalElement(id)] = value[i];
+    }
+  }
 }
 
-std::vector<double> DiscreteSystem::node_displacements(const Vector& x) const
+namespace {
+
+// Displacements of every node of the space (N x 3), complete on every rank.
+std::vector<double> space_displacements(const DiscreteSystem& system, const Vector& x, const NodeSpace& space,
+                                        const DofLayout& layout, const std::array<double, 3>& centre,
+                                        const std::array<double, 3>& lift_direction,
+                                        const Teuchos::Comm<int>& comm)
 {
-  auto& impl = *implementation_;
-  impl.state->doImport(x, *impl.importer, Tpetra::INSERT);
-  const double alpha = master(x, Master::rotation), lift = master(x, Master::lift);
-  const auto values = impl.state->getData(0);
-  std::vector<double> local(3 * impl.mesh.node_count(), 0.0), global(local.size(), 0.0);
-  const int rank = impl.comm->getRank();
-  for (std::int64_t n = 0; n < impl.mesh.node_count(); ++n) {
-    bool mine = false;   // owned nodes: every node is written by exactly one rank
-    for (auto id : impl.layout.node_dofs[n]) mine |= id >= impl.layout.rank_offsets[rank] && id < impl.layout.rank_offsets[rank + 1];
-    if (impl.layout.rigid[n]) {
+  const double alpha = system.master(x, Master::rotation), lift = system.master(x, Master::lift);
+  const int rank = comm.getRank();
+  const auto map = x.getMap();
+  const auto values = x.getData(0);
+  std::vector<double> local(3 * space.node_count(), 0.0), global(local.size(), 0.0);
+  for (std::int64_t n = 0; n < space.node_count(); ++n) {
+    if (layout.rigid[n]) {
       if (rank != 0) continue;
       double d[3];
-      for (int i = 0; i < 3; ++i) d[i] = impl.mesh.coordinates[n][i] - impl.face_centre[i];
-      const auto motion = rigid_face_motion(alpha, lift, d);
+      for (int i = 0; i < 3; ++i) d[i] = space.coordinates[n][i] - centre[i];
+      const auto motion = rigid_face_motion(alpha, lift, d, lift_direction.data());
       for (int i = 0; i < 3; ++i) local[3 * n + i] = motion.u[i];
       continue;
     }
-    if (!mine) continue;
-    for (int i = 0; i < 3; ++i) {
-      const auto id = impl.layout.node_dofs[n][i];
-      if (id >= 0) local[3 * n + i] = values[impl.overlap->getLocalElement(id)];
+    for (int i = 0; i < 3; ++i) {   // each free component is written by its owner only
+      const auto id = layout.node_dofs[n][i];
+      if (id >= 0 && map->isNodeGlobalElement(id)) local[3 * n + i] = values[map->getLocalElement(id)];
     }
   }
-  Teuchos::reduceAll(*impl.comm, Teuchos::REDUCE_SUM, static_cast<int>(local.size()), local.data(), global.data());
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, static_cast<int>(local.size()), local.data(), global.data());
+  for (std::int64_t n = space.mesh_nodes; n < space.node_count(); ++n)
+    if (space.dependent[n])
+      for (int i = 0; i < 3; ++i)
+        global[3 * n + i] = 0.5 * (global[3 * space.corners[n][0] + i] + global[3 * space.corners[n][1] + i]);
   return global;
+}
+
+}  // namespace
+
+std::vector<double> DiscreteSystem::node_displacements(const Vector& x) const
+{
+  const auto& impl = *implementation_;
+  auto all = space_displacements(*this, x, impl.space, impl.layout, impl.face_centre, impl.lift_direction, *impl.comm);
+  all.resize(3 * impl.space.mesh_nodes);
+  return all;
 }
 
 std::vector<double> DiscreteSystem::element_cauchy_trace(const Vector& x) const
 {
-  auto& impl = *implementation_;
-  const auto u = node_displacements(x);
+  const auto& impl = *implementation_;
+  const auto u = space_displacements(*this, x, impl.space, impl.layout, impl.face_centre, impl.lift_direction, *impl.comm);
   const auto law = laws::NeoHookean::from_young(impl.solid.young, impl.solid.poisson);
   std::vector<double> local(impl.mesh.element_count(), 0.0), global(local.size(), 0.0);
-  for (auto e : impl.elements) {
-    double X[8][3], ue[8][3];
-    for (int a = 0; a < 8; ++a)
+  auto trace = [&](const auto& nodes, auto shape, int order) {
+    using Shape = decltype(shape);
+    double X[Shape::nodes][3], ue[Shape::nodes][3];
+    for (int a = 0; a < Shape::nodes; ++a)
       for (int i = 0; i < 3; ++i) {
-        X[a][i] = impl.mesh.coordinates[impl.mesh.elements[e][a]][i];
-        ue[a][i] = u[3 * impl.mesh.elements[e][a] + i];
+        X[a][i] = impl.space.coordinates[nodes[a]][i];
+        ue[a][i] = u[3 * nodes[a] + i];
       }
-    local[e] = elements::hex8_mean_cauchy_trace(law, X, ue, impl.solid.quadrature_order);
-  }
+    return elements::mean_cauchy_trace<Shape>(law, X, ue, order);
+  };
+  for (auto e : impl.hex8) local[e] = trace(impl.mesh.elements[e], elements::Hex8Shape{}, impl.solid.quadrature_order);
+  for (auto k : impl.hex13)
+    local[impl.space.hex13_elements[k]] =
+        trace(impl.space.hex13_nodes[k], elements::Hex13Shape{}, std::max(impl.solid.quadrature_order, 3));
   Teuchos::reduceAll(*impl.comm, Teuchos::REDUCE_SUM, static_cast<int>(local.size()), local.data(), global.data());
   return global;
 }

@@ -7,6 +7,7 @@
 // rows are internal forces [nN] (the master rows: moment [nN nm] and Z force on the face, half spatula).
 // A prescribed master keeps an identity row and no coupling (its value lives in the state vector); its internal
 // force is returned as the reaction.
+#include "contact_model.hpp"
 #include "dof_layout.hpp"
 #include "neo_hookean.hpp"
 #include "rigid_face.hpp"
@@ -39,19 +40,32 @@ struct Evaluation {
   bool admissible = true;          // false: an element inverted (J <= 0); residual and matrix are not usable
   std::int64_t inverted_element = -1;
   double internal_energy = 0.0;    // Pi_int of the half model [nN nm]
-  std::array<double, master_count> master_residual{};   // moment [nN nm] and Z force [nN] on the face (half)
+  double contact_energy = 0.0;     // Pi_c of the half model [nN nm] (0 without adhesion)
+  int active_contact_faces = 0;    // contact faces integrated (all ranks)
+  int skipped_contact_faces = 0;   // contact faces beyond the cut-off, not integrated
+  std::array<double, master_count> master_residual{};   // moment [nN nm] and force [nN] on the face (half)
+};
+
+// What the system contains besides the solid: the contact enrichment and an adhesion model (none: no contact).
+struct SystemOptions {
+  Enrichment enrichment = Enrichment::q1c1;
+  std::shared_ptr<const ContactModel> contact;
 };
 
 class DiscreteSystem {
 public:
   DiscreteSystem(const mesh::HexMesh& mesh, const mesh::Partition& partition, const Constraints& constraints,
-                 const SolidParameters& solid, Teuchos::RCP<const Teuchos::Comm<int>> comm);
+                 const SolidParameters& solid, Teuchos::RCP<const Teuchos::Comm<int>> comm,
+                 const SystemOptions& options = {});
   ~DiscreteSystem();
 
   Teuchos::RCP<const Map> owned_map() const;
   Teuchos::RCP<Vector> create_vector() const;   // zero state = the undeformed spatula
   Teuchos::RCP<CrsMatrix> jacobian() const;    // the FE matrix the assembly fills
   const DofLayout& layout() const;
+  const NodeSpace& nodes() const;
+  // Undeformed contact area of the half model (sum over the contact faces) [nm^2].
+  double contact_area() const;
 
   void set_control(const MasterControl& control);
   const MasterControl& control() const;

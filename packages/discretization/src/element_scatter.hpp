@@ -1,12 +1,13 @@
 #pragma once
 // Device-side gather and scatter between element arrays and the distributed system, shared by every element
-// kernel (bulk solid now, contact faces later). A nodal displacement component is either a free unknown, fixed
-// (zero), or follows the rigid end face; the scatter applies the chain rule u(alpha, w) for the latter:
+// kernel (bulk solids and contact faces). A nodal displacement component is a free unknown, fixed (zero), follows
+// the rigid end face (u(alpha, w), rigid_face.hpp) or is dependent (the mean of two corner nodes, Q1C2 edges
+// shared with plain elements). The scatter applies the chain rule with T = du/dq, q the rank's local unknowns:
 //
-//   r_q  = T^T r_e,     K_qq = T^T K_e T + sum_rigid r_e . d2u/dalpha2 (alpha-alpha entry),
+//   r_q  = T^T r_e,     K_qq = T^T K_e T + sum_rigid r_e . d2u/dalpha2 (alpha-alpha entry).
 //
-// where T = du/dq maps element dofs to the rank's local unknowns q. Rows and columns of prescribed masters are
-// left out of the matrix (they get an identity row elsewhere); their residual is kept: it is the reaction.
+// Rows and columns of prescribed masters are left out of the matrix (they get an identity row elsewhere); their
+// residual is kept: it is the reaction.
 #include "rigid_face.hpp"
 #include "tpetra_types.hpp"
 
@@ -14,6 +15,7 @@ namespace spatula::discretization {
 
 constexpr int fixed_component = -1;
 constexpr int rigid_component = -2;
+constexpr int dependent_component = -3;
 
 struct ElementScatter {
   using local_matrix_type = CrsMatrix::local_matrix_device_type;
@@ -24,25 +26,40 @@ struct ElementScatter {
   residual_view_type residual;
   state_view_type state;                                   // owned + shared values of the current state
   Kokkos::View<const int*, device_type> column_of;          // owned+shared local id -> local column
-  Kokkos::View<const int* [3], device_type> node_unknown;   // local unknown, fixed_component or rigid_component
+  Kokkos::View<const int* [3], device_type> node_unknown;   // local unknown or one of the kinds above
   Kokkos::View<const double* [3], device_type> node_offset;   // X - c of rigid nodes
+  Kokkos::View<const int* [2], device_type> node_parent;      // corners of dependent nodes (local ids)
   int master_unknown[master_count] = {-1, -1};             // local ids of the masters (-1: not on this rank)
   bool master_prescribed[master_count] = {true, true};
   double alpha = 0.0, lift = 0.0;
+  double lift_direction[3] = {0.0, 0.0, 1.0};
   bool with_residual = true, with_matrix = true;
+
+  KOKKOS_INLINE_FUNCTION RigidFaceMotion motion(int node) const
+  {
+    const double d[3] = {node_offset(node, 0), node_offset(node, 1), node_offset(node, 2)};
+    return rigid_face_motion(alpha, lift, d, lift_direction);
+  }
+
+  KOKKOS_INLINE_FUNCTION double component(int node, int i) const
+  {
+    const int kind = node_unknown(node, i);
+    if (kind >= 0) return state(kind, 0);
+    if (kind == rigid_component) return motion(node).u[i];
+    if (kind == dependent_component) {
+      double sum = 0.0;
+      for (int p = 0; p < 2; ++p) {
+        const int parent = node_unknown(node_parent(node, p), i);
+        if (parent >= 0) sum += 0.5 * state(parent, 0);
+      }
+      return sum;
+    }
+    return 0.0;
+  }
 
   KOKKOS_INLINE_FUNCTION void displacement(int node, double u[3]) const
   {
-    if (node_unknown(node, 0) == rigid_component) {
-      const double d[3] = {node_offset(node, 0), node_offset(node, 1), node_offset(node, 2)};
-      const RigidFaceMotion motion = rigid_face_motion(alpha, lift, d);
-      for (int i = 0; i < 3; ++i) u[i] = motion.u[i];
-      return;
-    }
-    for (int i = 0; i < 3; ++i) {
-      const int unknown = node_unknown(node, i);
-      u[i] = unknown >= 0 ? state(unknown, 0) : 0.0;
-    }
+    for (int i = 0; i < 3; ++i) u[i] = component(node, i);
   }
 
   // Adds an element's residual r[3N] and (if with_matrix) tangent K[3N][3N] for its N local nodes.
@@ -71,16 +88,20 @@ struct ElementScatter {
         target[p][0] = position_of(kind);
         coefficient[p][0] = 1.0;
       } else if (kind == rigid_component) {
-        const double d[3] = {node_offset(node, 0), node_offset(node, 1), node_offset(node, 2)};
-        const RigidFaceMotion motion = rigid_face_motion(alpha, lift, d);
+        const RigidFaceMotion m = motion(node);
         if (i != 1) {
           target[p][0] = alpha_position = position_of(master_unknown[0]);
-          coefficient[p][0] = motion.du_dalpha[i];
-          second[p] = motion.d2u_dalpha2[i];
-        }
-        if (i == 2) {
+          coefficient[p][0] = m.du_dalpha[i];
+          second[p] = m.d2u_dalpha2[i];
           target[p][1] = position_of(master_unknown[1]);
-          coefficient[p][1] = 1.0;
+          coefficient[p][1] = lift_direction[i];
+        }
+      } else if (kind == dependent_component) {
+        for (int t = 0; t < 2; ++t) {
+          const int parent = node_unknown(node_parent(node, t), i);
+          if (parent < 0) continue;
+          target[p][t] = position_of(parent);
+          coefficient[p][t] = 0.5;
         }
       }
     }

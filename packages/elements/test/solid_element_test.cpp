@@ -1,7 +1,7 @@
 // The Hex8 solid kernel: residual and tangent against finite differences on a distorted element, the patch test,
 // rigid motions, and bad states.
 #include "neo_hookean.hpp"
-#include "solid_hex8.hpp"
+#include "solid_element.hpp"
 
 #include <gtest/gtest.h>
 
@@ -171,5 +171,5 @@ TEST(SolidHex8, CauchyTraceOfUniaxialStretch)
     u[a][1] = u[a][2] = 0.0;
   }
   // tr sigma = (3 lambda + 2 mu) e for small e
-  EXPECT_NEAR(elements::hex8_mean_cauchy_trace(law, X0, u, 2) / e, 3 * law.lambda + 2 * law.mu, 1e-4);
+  EXPECT_NEAR(elements::mean_cauchy_trace<elements::Hex8Shape>(law, X0, u, 2) / e, 3 * law.lambda + 2 * law.mu, 1e-4);
 }

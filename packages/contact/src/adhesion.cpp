@@ -1,0 +1,90 @@
+#include "adhesion.hpp"
+
+#include "contact_registry.hpp"
+#include "parameter_validation.hpp"
+
+#include <cmath>
+
+namespace spatula::contact {
+
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+
+}  // namespace
+
+double AdhesionSettings::gamma_W(double young) const
+{
+  const double r0 = lennard_jones.r0;
+  return young / (lennard_jones.hamaker / (2.0 * pi * pi * r0 * r0 * r0));
+}
+
+void AdhesionParameters::declare(Teuchos::ParameterList& adhesion)
+{
+  using parameters::Range;
+  std::vector<std::string> laws{"none"};
+  for (const auto& name : ContactLawRegistry::instance().names()) laws.push_back(name);
+  parameters::declare_string(adhesion, "law", "none", "van der Waals adhesion law (none: no contact)", laws);
+  parameters::declare_string(adhesion, "substrate", "flat", "rigid substrate", substrate_names());
+  parameters::declare_string(adhesion, "enrichment", "Q1C2",
+                             "contact surface interpolation: Q1C1 bilinear, Q1C2 biquadratic", {"Q1C1", "Q1C2"});
+  parameters::declare_int(adhesion, "quadrature", 6, "Gauss points per direction on each contact element",
+                          Range::closed(1, 8));
+  parameters::declare_string(adhesion, "specification", "physical",
+                             "physical: A_H and r0; normalized: gamma_W and gamma_L (R0 = 1 nm, W0 = E)",
+                             {"physical", "normalized"});
+  parameters::declare_double(adhesion, "A_H", 1.0, "Hamaker constant [1e-19 J]", Range::positive());
+  parameters::declare_double(adhesion, "r0", 0.4, "Lennard-Jones length [nm]", Range::positive());
+  parameters::declare_double(adhesion, "gamma_W", 25.266, "E / w0, w0 = A_H / (2 pi^2 r0^3)", Range::positive());
+  parameters::declare_double(adhesion, "gamma_L", 2.5, "R0 / r0 with R0 = 1 nm", Range::positive());
+  parameters::declare_double(adhesion, "regularization", 0.8,
+                             "r_reg / r_eq: below r_reg the traction continues linearly (C1)", {0.0, 1.0, true, false});
+  parameters::declare_double(adhesion, "cut-off", 10.0, "gap beyond which the traction is neglected [nm]",
+                             Range::positive());
+  auto& rough = parameters::declare_sublist(adhesion, "Rough Substrate", "Gaussian asperities on a triangular grid");
+  parameters::declare_double(rough, "z0", 4.0, "asperity height [nm]", Range::non_negative());
+  parameters::declare_double(rough, "h", 20.0, "asperity width [nm]", Range::positive());
+  parameters::declare_double(rough, "lambda", 100.0, "grid spacing [nm]", Range::positive());
+}
+
+AdhesionParameters AdhesionParameters::from(const Teuchos::ParameterList& adhesion, double young)
+{
+  AdhesionParameters p;
+  const auto law = adhesion.get<std::string>("law");
+  p.enabled = law != "none";
+  auto& s = p.settings;
+  s.law = law;
+  s.substrate = adhesion.get<std::string>("substrate");
+  s.enrichment = discretization::enrichment_from_name(adhesion.get<std::string>("enrichment"));
+  s.quadrature = adhesion.get<int>("quadrature");
+  auto& lj = s.lennard_jones;
+  if (adhesion.get<std::string>("specification") == "physical") {
+    lj.hamaker = 0.1 * adhesion.get<double>("A_H");   // 1e-19 J = 0.1 nN nm
+    lj.r0 = adhesion.get<double>("r0");
+  } else {
+    lj.r0 = 1.0 / adhesion.get<double>("gamma_L");
+    lj.hamaker = 2.0 * pi * pi * std::pow(lj.r0, 3) * young / adhesion.get<double>("gamma_W");
+  }
+  const double r_eq = lj.equilibrium_gap();
+  lj.r_reg = adhesion.get<double>("regularization") * r_eq;
+  lj.r_cut = adhesion.get<double>("cut-off");
+  if (lj.r_cut <= 2.0 * lj.r0)
+    parameters::fail("Adhesion/cut-off", lj.r_cut, "must exceed 2 r0 = " + std::to_string(2.0 * lj.r0) +
+                                                        " nm (the attraction reaches further)");
+  s.substrate_height = -r_eq;
+  const auto& rough = adhesion.sublist("Rough Substrate");
+  s.rough.z0 = rough.get<double>("z0");
+  s.rough.width = rough.get<double>("h");
+  s.rough.spacing = rough.get<double>("lambda");
+  s.rough.base = -r_eq - s.rough.z0;   // asperity tops at the pad's equilibrium gap
+  if (p.enabled) make_contact_model(s);   // checks the law/substrate combination now, before anything runs
+  return p;
+}
+
+std::shared_ptr<const discretization::ContactModel> make_contact_model(const AdhesionSettings& settings)
+{
+  return ContactLawRegistry::instance().create(settings);
+}
+
+}  // namespace spatula::contact

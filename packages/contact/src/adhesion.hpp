@@ -1,0 +1,45 @@
+#pragma once
+// The XML "Adhesion" sublist turned into a contact model: law (a registry name), substrate, enrichment, contact
+// quadrature, and the adhesion constants, given either physically (A_H, r0) or normalized (gamma_W, gamma_L with
+// R0 = 1 nm and W0 = E; MODEL.md section 3):
+//
+//   gamma_L = R0 / r0,  gamma_W = E / w0,  w0 = A_H / (2 pi^2 r0^3)   =>  r0 = R0 / gamma_L, A_H = 2 pi^2 r0^3 E / gamma_W.
+//
+// New laws are added by registering them (contact_registry.hpp); the solver and the assembly never change.
+#include "contact_model.hpp"
+#include "node_space.hpp"
+
+#include <Teuchos_ParameterList.hpp>
+
+#include <memory>
+#include <string>
+
+namespace spatula::contact {
+
+struct AdhesionSettings {
+  std::string law = "frictionless";
+  std::string substrate = "flat";
+  discretization::Enrichment enrichment = discretization::Enrichment::q1c2;
+  int quadrature = 6;                  // Gauss points per direction on each contact face
+  laws::LennardJones lennard_jones;    // A_H [nN nm], r0, r_reg, r_cut [nm]
+  laws::RoughSubstrate rough;          // z0, h, lambda (base set from r_eq: asperity tops at -r_eq)
+  double substrate_height = 0.0;       // flat: the plane z = -r_eq, so the undeformed pad is traction-free
+
+  double gamma_W(double young) const;
+  double gamma_L() const { return 1.0 / lennard_jones.r0; }
+};
+
+struct AdhesionParameters {
+  bool enabled = false;
+  AdhesionSettings settings;
+
+  static void declare(Teuchos::ParameterList& adhesion);
+  // Reads a validated sublist; E [GPa] is needed for the normalized form.
+  static AdhesionParameters from(const Teuchos::ParameterList& adhesion, double young);
+};
+
+// The contact model the settings select (through the registry). Throws InputError for unknown names and
+// invalid combinations.
+std::shared_ptr<const discretization::ContactModel> make_contact_model(const AdhesionSettings& settings);
+
+}  // namespace spatula::contact

@@ -1,0 +1,83 @@
+#include "contact_registry.hpp"
+
+#include "parameter_validation.hpp"
+
+namespace spatula::contact {
+
+using discretization::IntegrandContactModel;
+
+const std::vector<std::string>& substrate_names()
+{
+  static const std::vector<std::string> names = {"flat", "rough"};
+  return names;
+}
+
+namespace {
+
+std::string describe(const AdhesionSettings& s)
+{
+  return s.law + " Lennard-Jones adhesion on a " + s.substrate + " substrate (A_H = " +
+         std::to_string(s.lennard_jones.hamaker * 10.0) + "e-19 J, r0 = " + std::to_string(s.lennard_jones.r0) +
+         " nm, r_reg = " + std::to_string(s.lennard_jones.r_reg) + " nm, r_cut = " +
+         std::to_string(s.lennard_jones.r_cut) + " nm), " +
+         (s.enrichment == discretization::Enrichment::q1c2 ? "Q1C2" : "Q1C1") + ", " + std::to_string(s.quadrature) +
+         "x" + std::to_string(s.quadrature) + " points per face";
+}
+
+std::shared_ptr<const discretization::ContactModel> frictionless(const AdhesionSettings& s)
+{
+  const double w = s.lennard_jones.work_of_adhesion();
+  if (s.substrate == "flat") {
+    elements::FrictionlessIntegrand<laws::FlatSubstrate> integrand{s.lennard_jones, {s.substrate_height}};
+    return std::make_shared<IntegrandContactModel<decltype(integrand)>>(integrand, s.quadrature, describe(s), w);
+  }
+  elements::FrictionlessIntegrand<laws::RoughSubstrate> integrand{s.lennard_jones, s.rough};
+  return std::make_shared<IntegrandContactModel<decltype(integrand)>>(integrand, s.quadrature, describe(s), w);
+}
+
+std::shared_ptr<const discretization::ContactModel> stiction(const AdhesionSettings& s)
+{
+  if (s.substrate != "flat")
+    throw parameters::InputError("parameter 'Adhesion/law' = 'stiction' needs 'Adhesion/substrate' = 'flat' (got '" +
+                                 s.substrate + "'): tangential travel on a curved substrate is not defined");
+  elements::StictionIntegrand integrand{{s.lennard_jones, s.substrate_height}};
+  return std::make_shared<IntegrandContactModel<decltype(integrand)>>(integrand, s.quadrature, describe(s),
+                                                                      s.lennard_jones.work_of_adhesion());
+}
+
+}  // namespace
+
+ContactLawRegistry::ContactLawRegistry()
+{
+  factories_["frictionless"] = frictionless;
+  factories_["stiction"] = stiction;
+}
+
+ContactLawRegistry& ContactLawRegistry::instance()
+{
+  static ContactLawRegistry registry;
+  return registry;
+}
+
+void ContactLawRegistry::add(const std::string& name, ContactFactory factory) { factories_[name] = std::move(factory); }
+
+std::shared_ptr<const discretization::ContactModel> ContactLawRegistry::create(const AdhesionSettings& settings) const
+{
+  const auto it = factories_.find(settings.law);
+  if (it == factories_.end()) {
+    std::string allowed;
+    for (const auto& name : names()) allowed += (allowed.empty() ? "" : ", ") + name;
+    throw parameters::InputError("parameter 'Adhesion/law' = '" + settings.law + "' is not registered; allowed: " +
+                                 allowed);
+  }
+  return it->second(settings);
+}
+
+std::vector<std::string> ContactLawRegistry::names() const
+{
+  std::vector<std::string> names;
+  for (const auto& entry : factories_) names.push_back(entry.first);
+  return names;
+}
+
+}  // namespace spatula::contact

@@ -1,0 +1,164 @@
+#pragma once
+// Contact elements on the pad's bottom surface (paper eqs. 10-18): the adhesion energy and its first and second
+// variations integrated over the undeformed face with an order x order Gauss rule,
+//
+//   energy = sum_q phi(x_q) dA_q,  r_kI = sum_q N_k dphi/dx_I dA_q,  K_kI,lJ = sum_q N_k N_l d2phi/dx_I dx_J dA_q,
+//
+// x_q = sum_k N_k (X_k + u_k). The face is interpolated bilinearly (Q1C1: 4 nodes) or biquadratically (Q1C2: the
+// 4 corners, 4 mid-edge nodes and the centre, in that order). The adhesion integrand (law x substrate) is a
+// template parameter: evaluate(X, x, phi, dphi/dx, d2phi/dx2 or nullptr) -> within the cut-off?
+#include "gauss_rule.hpp"
+#include "lennard_jones.hpp"
+#include "stiction.hpp"
+#include "substrate.hpp"
+
+#include <type_traits>
+
+namespace spatula::elements {
+
+// Bilinear face: corners (-1,-1), (1,-1), (1,1), (-1,1).
+struct Quad4Surface {
+  static constexpr int nodes = 4;
+  KOKKOS_INLINE_FUNCTION static void evaluate(double s, double t, double N[4], double dN[4][2])
+  {
+    const double cs[4] = {-1, 1, 1, -1}, ct[4] = {-1, -1, 1, 1};
+    for (int k = 0; k < 4; ++k) {
+      N[k] = 0.25 * (1 + cs[k] * s) * (1 + ct[k] * t);
+      dN[k][0] = 0.25 * cs[k] * (1 + ct[k] * t);
+      dN[k][1] = 0.25 * ct[k] * (1 + cs[k] * s);
+    }
+  }
+};
+
+// Biquadratic Lagrange face: corners as Quad4, then mid-edges (0,-1), (1,0), (0,1), (-1,0), then the centre.
+struct Quad9Surface {
+  static constexpr int nodes = 9;
+  KOKKOS_INLINE_FUNCTION static void lagrange(double x, double L[3], double dL[3])   // at -1, 0, 1
+  {
+    L[0] = 0.5 * x * (x - 1);
+    L[1] = (1 - x) * (1 + x);
+    L[2] = 0.5 * x * (x + 1);
+    dL[0] = x - 0.5;
+    dL[1] = -2 * x;
+    dL[2] = x + 0.5;
+  }
+  KOKKOS_INLINE_FUNCTION static void evaluate(double s, double t, double N[9], double dN[9][2])
+  {
+    constexpr int is[9] = {0, 2, 2, 0, 1, 2, 1, 0, 1}, it[9] = {0, 0, 2, 2, 0, 1, 2, 1, 1};
+    double Ls[3], dLs[3], Lt[3], dLt[3];
+    lagrange(s, Ls, dLs);
+    lagrange(t, Lt, dLt);
+    for (int k = 0; k < 9; ++k) {
+      N[k] = Ls[is[k]] * Lt[it[k]];
+      dN[k][0] = dLs[is[k]] * Lt[it[k]];
+      dN[k][1] = Ls[is[k]] * dLt[it[k]];
+    }
+  }
+};
+
+// The frictionless law over any substrate: phi(d(x)), grad = phi' n, Hessian = phi'' n n + phi' grad n (the last
+// term only where the substrate is curved).
+template <class Substrate>
+struct FrictionlessIntegrand {
+  laws::LennardJones law;
+  Substrate substrate;
+  static constexpr bool curved = !std::is_same<Substrate, laws::FlatSubstrate>::value;
+
+  KOKKOS_INLINE_FUNCTION double far_bound(const double x[3]) const { return substrate.distance_bound(x); }
+  KOKKOS_INLINE_FUNCTION double cut_off() const { return law.r_cut; }
+
+  KOKKOS_INLINE_FUNCTION bool evaluate(const double[3], const double x[3], double& phi, double gradient[3],
+                                       double (*H)[3]) const
+  {
+    if (substrate.distance_bound(x) > law.r_cut) {   // certainly beyond the cut-off: no projection needed
+      double d1, d2;
+      law.evaluate(law.r_cut * 2.0, phi, d1, d2);
+      for (int i = 0; i < 3; ++i) {
+        gradient[i] = 0.0;
+        if (H)
+          for (int j = 0; j < 3; ++j) H[i][j] = 0.0;
+      }
+      return false;
+    }
+    laws::SurfacePoint p;
+    substrate.project(x, p);
+    double d1, d2;
+    const bool active = law.evaluate(p.distance, phi, d1, d2);
+    for (int i = 0; i < 3; ++i) gradient[i] = d1 * p.normal[i];
+    if (H)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          H[i][j] = d2 * p.normal[i] * p.normal[j] + (curved ? d1 * p.curvature[i][j] : 0.0);
+    return active;
+  }
+};
+
+// Stiction on a flat substrate (laws/stiction.hpp).
+struct StictionIntegrand {
+  laws::StictionLaw law;
+  KOKKOS_INLINE_FUNCTION double far_bound(const double x[3]) const { return x[2] - law.substrate_height; }
+  KOKKOS_INLINE_FUNCTION double cut_off() const { return law.law.r_cut; }
+  KOKKOS_INLINE_FUNCTION bool evaluate(const double X[3], const double x[3], double& phi, double gradient[3],
+                                       double (*H)[3]) const
+  {
+    return law.evaluate(X, x, phi, gradient, H);
+  }
+};
+
+struct ContactFaceResult {
+  double energy = 0.0;
+  double area = 0.0;       // undeformed area of the face
+  int active_points = 0;   // quadrature points within the cut-off
+};
+
+// One contact face: energy, residual r[3N] and (if K) tangent K[3N][3N].
+template <class Surface, class Integrand>
+KOKKOS_INLINE_FUNCTION ContactFaceResult contact_face(const Integrand& integrand, const double X[Surface::nodes][3],
+                                                      const double u[Surface::nodes][3], int order,
+                                                      double r[3 * Surface::nodes],
+                                                      double (*K)[3 * Surface::nodes] = nullptr)
+{
+  constexpr int N = Surface::nodes;
+  ContactFaceResult result;
+  for (int p = 0; p < 3 * N; ++p) {
+    r[p] = 0.0;
+    if (K)
+      for (int q = 0; q < 3 * N; ++q) K[p][q] = 0.0;
+  }
+  for (int a = 0; a < order; ++a)
+    for (int b = 0; b < order; ++b) {
+      double s, t, ws, wt, shape[N], dshape[N][2];
+      gauss_point(order, a, s, ws);
+      gauss_point(order, b, t, wt);
+      Surface::evaluate(s, t, shape, dshape);
+      double Xq[3] = {0, 0, 0}, xq[3] = {0, 0, 0}, Xs[3] = {0, 0, 0}, Xt[3] = {0, 0, 0};
+      for (int k = 0; k < N; ++k)
+        for (int i = 0; i < 3; ++i) {
+          Xq[i] += shape[k] * X[k][i];
+          xq[i] += shape[k] * (X[k][i] + u[k][i]);
+          Xs[i] += dshape[k][0] * X[k][i];
+          Xt[i] += dshape[k][1] * X[k][i];
+        }
+      const double normal[3] = {Xs[1] * Xt[2] - Xs[2] * Xt[1], Xs[2] * Xt[0] - Xs[0] * Xt[2],
+                                Xs[0] * Xt[1] - Xs[1] * Xt[0]};
+      const double dA = ::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]) * ws * wt;
+      double phi, gradient[3], H[3][3];
+      const bool active = integrand.evaluate(Xq, xq, phi, gradient, K ? H : nullptr);
+      result.energy += phi * dA;
+      result.area += dA;
+      if (!active) continue;
+      ++result.active_points;
+      for (int k = 0; k < N; ++k)
+        for (int i = 0; i < 3; ++i) r[3 * k + i] += shape[k] * gradient[i] * dA;
+      if (K)
+        for (int k = 0; k < N; ++k)
+          for (int l = 0; l < N; ++l) {
+            const double w = shape[k] * shape[l] * dA;
+            for (int i = 0; i < 3; ++i)
+              for (int j = 0; j < 3; ++j) K[3 * k + i][3 * l + j] += w * H[i][j];
+          }
+    }
+  return result;
+}
+
+}  // namespace spatula::elements

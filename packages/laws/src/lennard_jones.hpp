@@ -1,0 +1,67 @@
+#pragma once
+// Van der Waals adhesion between the pad surface and a rigid substrate as a Lennard-Jones surface law of the gap r
+// (paper eqs. 16, 18, 23; MODEL.md section 3), per unit undeformed area, positive T = repulsion:
+//
+//   phi(r) = A / (2 pi r0^2) [ (1/360) (r0/r)^8 - (1/6) (r0/r)^2 ]
+//   T(r)   = -phi'(r) = A / (2 pi r0^3) [ (1/45) (r0/r)^9 - (1/3) (r0/r)^3 ]
+//   T'(r)  = -A / (2 pi r0^4) [ (1/5) (r0/r)^10 - (r0/r)^4 ]
+//
+// r_eq = r0 15^(-1/6) (T = 0), r_min = r0 5^(-1/6) (strongest attraction t_max = sqrt(5) A / (9 pi r0^3)),
+// w_adh = -phi(r_eq) = 15^(1/3) A / (16 pi r0^2).
+// Regularization in compression (r < r_reg < r_eq): T continues linearly with the slope it has at r_reg,
+//   T(r) = T(r_reg) + T'(r_reg) (r - r_reg),  phi(r) = phi(r_reg) - T(r_reg)(r - r_reg) - T'(r_reg)(r - r_reg)^2 / 2,
+// so T is C1 and finite for any r (also r <= 0). Cut-off (r > r_cut): T = 0 and phi = phi(r_cut).
+#include <Kokkos_Core.hpp>
+
+#include <cmath>
+
+namespace spatula::laws {
+
+struct LennardJones {
+  double hamaker = 0.1;   // A_H [nN nm] (1e-19 J)
+  double r0 = 0.4;        // [nm]
+  double r_reg = 0.0;     // regularization gap [nm] (0: none)
+  double r_cut = 1e30;    // cut-off gap [nm]
+
+  KOKKOS_INLINE_FUNCTION double equilibrium_gap() const { return r0 * ::pow(15.0, -1.0 / 6.0); }
+  KOKKOS_INLINE_FUNCTION double strongest_attraction_gap() const { return r0 * ::pow(5.0, -1.0 / 6.0); }
+  KOKKOS_INLINE_FUNCTION double work_of_adhesion() const
+  {
+    return ::cbrt(15.0) * hamaker / (16.0 * M_PI * r0 * r0);
+  }
+  KOKKOS_INLINE_FUNCTION double max_traction() const { return ::sqrt(5.0) * hamaker / (9.0 * M_PI * r0 * r0 * r0); }
+
+  // The unregularized law: phi, phi' = -T, phi'' = -T'.
+  KOKKOS_INLINE_FUNCTION void exact(double r, double& phi, double& dphi, double& d2phi) const
+  {
+    const double s = r0 / r, s2 = s * s, s3 = s2 * s, s4 = s2 * s2, s8 = s4 * s4;
+    const double c = hamaker / (2.0 * M_PI * r0 * r0);
+    phi = c * (s8 / 360.0 - s2 / 6.0);
+    dphi = -(c / r0) * (s8 * s / 45.0 - s3 / 3.0);
+    d2phi = (c / (r0 * r0)) * (s8 * s2 / 5.0 - s4);
+  }
+
+  // phi, phi' and phi'' with regularization and cut-off. Returns false beyond the cut-off (all three constant/0).
+  KOKKOS_INLINE_FUNCTION bool evaluate(double r, double& phi, double& dphi, double& d2phi) const
+  {
+    if (r > r_cut) {
+      double d1, d2;
+      exact(r_cut, phi, d1, d2);
+      dphi = d2phi = 0.0;
+      return false;
+    }
+    if (r < r_reg) {
+      double p, d1, d2;
+      exact(r_reg, p, d1, d2);
+      const double delta = r - r_reg;
+      phi = p + d1 * delta + 0.5 * d2 * delta * delta;
+      dphi = d1 + d2 * delta;
+      d2phi = d2;
+      return true;
+    }
+    exact(r, phi, dphi, d2phi);
+    return true;
+  }
+};
+
+}  // namespace spatula::laws
