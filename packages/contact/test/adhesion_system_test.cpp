@@ -1,0 +1,258 @@
+// Adhesion in the assembled system: the undeformed spatula stores -A_c w_adh (Q1C1 and Q1C2), a stiff block
+// lifted off the substrate feels area x traction with its maximum at r_min, the global tangent with contact and
+// enrichment against finite differences, 1 vs 2 ranks, and the law registry open to new laws.
+#include "adhesion.hpp"
+#include "box_mesh.hpp"
+#include "contact_registry.hpp"
+#include "load_stepping.hpp"
+#include "parameter_validation.hpp"
+#include "spatula_mesher.hpp"
+
+#include <Teuchos_DefaultComm.hpp>
+#include <Teuchos_DefaultMpiComm.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+using namespace spatula;
+using discretization::DiscreteSystem;
+using discretization::Master;
+
+namespace {
+
+contact::AdhesionSettings settings(discretization::Enrichment enrichment, const std::string& law = "frictionless")
+{
+  contact::AdhesionSettings s;
+  s.law = law;
+  s.enrichment = enrichment;
+  s.quadrature = 4;
+  s.lennard_jones.r_reg = 0.8 * s.lennard_jones.equilibrium_gap();
+  s.lennard_jones.r_cut = 10.0;
+  s.substrate_height = -s.lennard_jones.equilibrium_gap();
+  return s;
+}
+
+struct Spatula {
+  geometry::SpatulaShape shape{geometry::ShapeParameters{}};
+  mesh::HexMesh mesh = mesh::mesh_spatula(shape, mesh::MeshParameters{});
+  discretization::Constraints constraints() const
+  {
+    const auto p1 = shape.point(1);
+    return discretization::spatula_constraints(mesh, {p1.x, p1.y, p1.z}, false);
+  }
+  std::unique_ptr<DiscreteSystem> system(const contact::AdhesionSettings& s,
+                                         Teuchos::RCP<const Teuchos::Comm<int>> comm) const
+  {
+    const auto partition = mesh::partition_mesh(mesh, comm->getSize());
+    discretization::SystemOptions options{s.enrichment, contact::make_contact_model(s)};
+    return std::make_unique<DiscreteSystem>(mesh, partition, constraints(), discretization::SolidParameters{}, comm,
+                                            options);
+  }
+};
+
+}  // namespace
+
+TEST(Adhesion, UndeformedSpatulaStoresMinusContactAreaTimesWorkOfAdhesion)
+{
+  Spatula spatula;
+  auto comm = Teuchos::DefaultComm<int>::getComm();
+  for (auto enrichment : {discretization::Enrichment::q1c1, discretization::Enrichment::q1c2}) {
+    const auto s = settings(enrichment);
+    auto system = spatula.system(s, comm);
+    auto x = system->create_vector(), f = system->create_vector();
+    const auto evaluation = system->evaluate(*x, f.get(), true);
+    const double w_adh = s.lennard_jones.work_of_adhesion();
+    const double area = 2.0 * system->contact_area();   // full spatula
+    EXPECT_NEAR(2.0 * evaluation.contact_energy, -area * w_adh, 1e-9 * area * w_adh);
+    EXPECT_NEAR(f->normInf(), 0.0, 1e-12);   // traction-free start
+    EXPECT_EQ(evaluation.skipped_contact_faces, 0);
+    if (comm->getRank() == 0 && enrichment == discretization::Enrichment::q1c2)
+      std::cout << "Pi_c0 = A_c w_adh = " << area << " nm^2 x " << w_adh << " nN/nm = " << area * w_adh / 2.0
+                << " E R0^3 (paper: 759.3 exact law with A_c = 49,524 nm^2, 761.5 with its regularization)\n";
+  }
+}
+
+TEST(Adhesion, StiffBlockLiftedFeelsAreaTimesTractionMaximalAtRmin)
+{
+  mesh::BoxParameters box;
+  box.lengths = {20.0, 5.0, 10.0};
+  box.elements = {4, 1, 2};
+  const auto mesh = mesh::box_mesh(box);
+  discretization::Constraints constraints;
+  constraints.fixed.push_back({mesh.nodes(mesh::Boundary::symmetry), 1});
+  for (std::int64_t n = 0; n < mesh.node_count(); ++n)
+    if (mesh.coordinates[n][2] == 10.0) constraints.rigid_nodes.push_back(n);
+  constraints.rigid_centre = {10.0, 0.0, 10.0};
+  auto comm = Teuchos::DefaultComm<int>::getComm();
+  const auto partition = mesh::partition_mesh(mesh, comm->getSize());
+  auto s = settings(discretization::Enrichment::q1c1);
+  discretization::SolidParameters stiff;
+  stiff.young = 2e4;   // so stiff that the bottom follows the top
+  auto system = Teuchos::rcp(new DiscreteSystem(mesh, partition, constraints, stiff, comm,
+                                                {s.enrichment, contact::make_contact_model(s)}));
+  solvers::LinearSolverFactory linear(solvers::LinearSolverParameters{});
+  auto model = Teuchos::rcp(new solvers::SpatulaModel(system, linear.lows_factory()));
+  solvers::NewtonSolver newton(model, solvers::NewtonParameters{}, linear);
+  analysis::LoadPath path(*model, newton, nullptr, false);
+  analysis::StepParameters steps;
+  steps.initial = steps.maximum = 0.01;
+  ASSERT_FALSE(path.advance(Master::lift, 0.3, false, steps, 1.0, {}).has_value());
+  const auto& lj = s.lennard_jones;
+  const double area = 20.0 * 5.0;
+  double strongest = 0.0, at = 0.0;
+  for (const auto& point : path.points()) {
+    double phi, dphi, d2phi;
+    lj.evaluate(lj.equilibrium_gap() + point.lift, phi, dphi, d2phi);
+    const double expected = area * dphi;   // the pull that holds the block: area x attraction (-T = phi')
+    EXPECT_NEAR(point.force, expected, 2e-3 * area * lj.max_traction()) << "lift " << point.lift;
+    if (point.force > strongest) {
+      strongest = point.force;
+      at = point.lift;
+    }
+  }
+  EXPECT_NEAR(strongest, area * lj.max_traction(), 0.01 * area * lj.max_traction());
+  EXPECT_NEAR(lj.equilibrium_gap() + at, lj.strongest_attraction_gap(), 0.0101);
+}
+
+TEST(Adhesion, GlobalTangentWithContactAndEnrichmentIsTheResidualDerivative)
+{
+  Spatula spatula;
+  auto comm = Teuchos::DefaultComm<int>::getComm();
+  for (const std::string law : {"frictionless", "stiction"}) {
+    auto system = spatula.system(settings(discretization::Enrichment::q1c2, law), comm);
+    system->set_control({{false, false}});
+    auto x = system->create_vector();
+    std::vector<double> u(3 * spatula.mesh.node_count());
+    for (std::int64_t n = 0; n < spatula.mesh.node_count(); ++n) {
+      const auto& X = spatula.mesh.coordinates[n];
+      u[3 * n + 0] = 0.05 * std::sin(0.02 * X[0]);
+      u[3 * n + 1] = 0.02 * X[1] / 100.0;
+      u[3 * n + 2] = 0.3 * std::max(0.0, std::sin(0.01 * X[0] + 0.02 * X[1])) + 0.02;   // partly lifted pad
+    }
+    system->set_displacements(*x, u);
+    system->set_master(*x, Master::rotation, 0.01);
+    auto f = system->create_vector(), jv = system->create_vector(), direction = system->create_vector();
+    ASSERT_TRUE(system->evaluate(*x, f.get(), true).admissible);
+    direction->randomize(-1.0, 1.0);
+    system->jacobian()->apply(*direction, *jv);
+    const double h = 1e-7;
+    auto plus = system->create_vector(), minus = system->create_vector(), fp = system->create_vector(),
+         fm = system->create_vector();
+    plus->update(1.0, *x, h, *direction, 0.0);
+    minus->update(1.0, *x, -h, *direction, 0.0);
+    system->evaluate(*plus, fp.get(), false);
+    system->evaluate(*minus, fm.get(), false);
+    fp->update(-0.5 / h, *fm, 0.5 / h);
+    fp->update(-1.0, *jv, 1.0);
+    EXPECT_LT(fp->norm2() / jv->norm2(), 1e-6) << law;
+  }
+}
+
+TEST(Adhesion, SameOnAllRanksAndOnOne)
+{
+  Spatula spatula;
+  auto world = Teuchos::DefaultComm<int>::getComm();
+  auto self = Teuchos::rcp(new Teuchos::MpiComm<int>(MPI_COMM_SELF));
+  const auto s = settings(discretization::Enrichment::q1c2);
+  auto a = spatula.system(s, world), b = spatula.system(s, self);
+  std::vector<double> u(3 * spatula.mesh.node_count());
+  for (std::int64_t n = 0; n < spatula.mesh.node_count(); ++n) u[3 * n + 2] = 0.001 * spatula.mesh.coordinates[n][0];
+  auto xa = a->create_vector(), xb = b->create_vector();
+  a->set_displacements(*xa, u);
+  b->set_displacements(*xb, u);
+  auto fa = a->create_vector(), fb = b->create_vector();
+  const auto ea = a->evaluate(*xa, fa.get(), true), eb = b->evaluate(*xb, fb.get(), true);
+  EXPECT_NEAR(ea.contact_energy, eb.contact_energy, 1e-12 * std::abs(eb.contact_energy));
+  EXPECT_NEAR(ea.internal_energy, eb.internal_energy, 1e-12 * eb.internal_energy);
+  EXPECT_NEAR(fa->norm2(), fb->norm2(), 1e-12 * fb->norm2());
+  EXPECT_EQ(ea.active_contact_faces + ea.skipped_contact_faces, eb.active_contact_faces + eb.skipped_contact_faces);
+}
+
+TEST(Adhesion, FacesBeyondTheCutOffAreSkippedButKeepTheirEnergy)
+{
+  Spatula spatula;
+  auto s = settings(discretization::Enrichment::q1c2);
+  auto system = spatula.system(s, Teuchos::DefaultComm<int>::getComm());
+  std::vector<double> u(3 * spatula.mesh.node_count(), 0.0);
+  for (std::int64_t n = 0; n < spatula.mesh.node_count(); ++n)   // the pad beyond X = 200 nm lifted by 20 nm
+    if (spatula.mesh.coordinates[n][0] > 200.0) u[3 * n + 2] = 20.0;
+  auto x = system->create_vector(), f = system->create_vector();
+  system->set_displacements(*x, u);
+  const auto evaluation = system->evaluate(*x, f.get(), false);
+  EXPECT_GT(evaluation.skipped_contact_faces, 0);
+  EXPECT_GT(evaluation.active_contact_faces, 0);
+  // Lifting everything: every face skipped, energy phi(r_cut) per unit area, no adhesion force at all.
+  for (std::int64_t n = 0; n < spatula.mesh.node_count(); ++n) u[3 * n + 2] = 20.0;
+  system->set_displacements(*x, u);
+  const auto far = system->evaluate(*x, f.get(), false);
+  EXPECT_EQ(far.active_contact_faces, 0);
+  double phi_cut, unused1, unused2;
+  s.lennard_jones.exact(s.lennard_jones.r_cut, phi_cut, unused1, unused2);
+  EXPECT_NEAR(far.contact_energy, phi_cut * system->contact_area(), 1e-12);
+}
+
+namespace {
+
+// A test-only law: a linear spring holding each surface point at the equilibrium gap, phi = k/2 (d - r_eq)^2.
+struct SpringIntegrand {
+  double stiffness = 1.0, height = 0.0, gap = 0.25;
+  KOKKOS_INLINE_FUNCTION double far_bound(const double x[3]) const { return x[2] - height; }
+  KOKKOS_INLINE_FUNCTION double cut_off() const { return 1e30; }
+  KOKKOS_INLINE_FUNCTION bool evaluate(const double[3], const double x[3], double& phi, double g[3],
+                                       double (*H)[3]) const
+  {
+    const double d = x[2] - height - gap;
+    phi = 0.5 * stiffness * d * d;
+    g[0] = g[1] = 0.0;
+    g[2] = stiffness * d;
+    if (H)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) H[i][j] = i == 2 && j == 2 ? stiffness : 0.0;
+    return true;
+  }
+};
+
+}  // namespace
+
+TEST(ContactRegistry, ANewLawIsUsedByNameWithoutTouchingTheSolver)
+{
+  contact::ContactLawRegistry::instance().add("test spring", [](const contact::AdhesionSettings& s) {
+    SpringIntegrand spring{3.0, s.substrate_height, s.lennard_jones.equilibrium_gap()};
+    return std::make_shared<discretization::IntegrandContactModel<SpringIntegrand>>(spring, s.quadrature,
+                                                                                   "test spring", 0.0);
+  });
+  auto s = settings(discretization::Enrichment::q1c1, "test spring");
+  Spatula spatula;
+  auto system = spatula.system(s, Teuchos::DefaultComm<int>::getComm());
+  auto x = system->create_vector(), f = system->create_vector();
+  std::vector<double> u(3 * spatula.mesh.node_count(), 0.0);
+  for (auto& value : u) value = 0.0;
+  for (std::int64_t n = 0; n < spatula.mesh.node_count(); ++n) u[3 * n + 2] = 0.1;   // everything lifted 0.1 nm
+  system->set_displacements(*x, u);
+  const auto evaluation = system->evaluate(*x, f.get(), false);
+  // phi = k/2 0.1^2 over the contact area (the spring's energy, nothing else of the adhesion).
+  EXPECT_NEAR(evaluation.contact_energy, 0.5 * 3.0 * 0.01 * system->contact_area(), 1e-9);
+  const auto names = contact::ContactLawRegistry::instance().names();
+  EXPECT_NE(std::find(names.begin(), names.end(), "test spring"), names.end());
+  s.law = "no such law";
+  try {
+    contact::make_contact_model(s);
+    FAIL() << "unknown law accepted";
+  } catch (const parameters::InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("'Adhesion/law' = 'no such law'"), std::string::npos);
+    EXPECT_NE(std::string(error.what()).find("frictionless"), std::string::npos);
+  }
+}
+
+TEST(ContactRegistry, StictionOnARoughSubstrateIsAClearError)
+{
+  auto s = settings(discretization::Enrichment::q1c2, "stiction");
+  s.substrate = "rough";
+  try {
+    contact::make_contact_model(s);
+    FAIL() << "accepted";
+  } catch (const parameters::InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("needs 'Adhesion/substrate' = 'flat'"), std::string::npos);
+  }
+}
