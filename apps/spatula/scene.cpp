@@ -39,6 +39,8 @@ Teuchos::ParameterList valid_scene_parameters()
   solvers::LinearSolverParameters::declare(
       parameters::declare_sublist(valid, "Linear Solver", "solver of the Newton steps"));
   solvers::NewtonParameters::declare(parameters::declare_sublist(valid, "Nonlinear Solver", "Newton's method"));
+  contact::AdhesionParameters::declare(
+      parameters::declare_sublist(valid, "Adhesion", "van der Waals adhesion to a rigid substrate"));
   return valid;
 }
 
@@ -53,6 +55,7 @@ Scene read_scene(Teuchos::ParameterList user)
   scene.loading = LoadingParameters::from(user.sublist("Loading"));
   scene.linear_solver = solvers::LinearSolverParameters::from(user.sublist("Linear Solver"));
   scene.newton = solvers::NewtonParameters::from(user.sublist("Nonlinear Solver"));
+  scene.adhesion = contact::AdhesionParameters::from(user.sublist("Adhesion"), scene.material.young);
   scene.validated = user;
   return scene;
 }

@@ -1,5 +1,6 @@
 #pragma once
 // A scene: the whole XML input of one run, validated against the parameters every package declares.
+#include "adhesion.hpp"
 #include "discrete_system.hpp"
 #include "loading.hpp"
 #include "newton.hpp"
@@ -26,6 +27,7 @@ struct Scene {
   mesh::MeshParameters mesh;
   OutputParameters output;
   discretization::SolidParameters material;
+  contact::AdhesionParameters adhesion;
   LoadingParameters loading;
   solvers::LinearSolverParameters linear_solver;
   solvers::NewtonParameters newton;
@@ -33,7 +35,7 @@ struct Scene {
 };
 
 // All valid keys with defaults and docs, in sublists "Geometry", "Mesh", "Output", "Material", "Loading",
-// "Linear Solver", "Nonlinear Solver".
+// "Linear Solver", "Nonlinear Solver", "Adhesion".
 Teuchos::ParameterList valid_scene_parameters();
 // Validates a user's list (throws parameters::InputError) and reads it into typed parameters.
 Scene read_scene(Teuchos::ParameterList user);

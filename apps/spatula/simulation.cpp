@@ -14,26 +14,39 @@ constexpr double pi = 3.14159265358979323846;
 constexpr double degree = pi / 180.0;
 
 // curve.csv: one row per converged state, full-spatula values (the model is half of it).
+// Energies in the paper's form: Pi_sa = Pi_c - Pi_c(start) (= Pi_c0 + Pi_c for the exact law), all over
+// Pi_c0 = A_c w_adh; the balance error |Pi_ext - Pi_int - Pi_sa| / Pi_c0 (Pi_c0 = 1 without adhesion).
 class CurveWriter {
 public:
-  CurveWriter(const std::string& file, double young) : out_(file), young_(young)
+  CurveWriter(const std::string& file, double young, double reference_energy, double initial_contact_energy)
+      : out_(file), young_(young), reference_(reference_energy), initial_contact_(initial_contact_energy)
   {
     out_ << "step,stage,theta_y_deg,u_z_nm,M_y_nNnm,M_y_per_ER0^3,P_z_nN,P_z_per_ER0^2,Pi_int_1e-18J,"
-            "Pi_ext_1e-18J,newton_iterations,negative_pivots,wall_s\n";
+            "Pi_ext_1e-18J,Pi_c_1e-18J,Pi_sa_1e-18J,Pi_ext_per_Pi_c0,Pi_int_per_Pi_c0,Pi_sa_per_Pi_c0,"
+            "balance_error_per_Pi_c0,contact_faces_active,contact_faces_skipped,newton_iterations,negative_pivots,"
+            "wall_s\n";
     out_ << std::setprecision(10);
+  }
+  double stored_adhesion(const analysis::LoadPoint& p) const { return 2 * (p.contact_energy - initial_contact_); }
+  double balance_error(const analysis::LoadPoint& p) const
+  {
+    return std::abs(2 * p.external_work - 2 * p.internal_energy - stored_adhesion(p)) / reference_;
   }
   void write(const analysis::LoadPoint& p, const char* stage, double theta_s)
   {
+    const double sa = stored_adhesion(p);
     out_ << p.step << "," << stage << "," << (theta_s + p.rotation) / degree << "," << p.lift << ","
          << 2 * p.moment << "," << 2 * p.moment / young_ << "," << 2 * p.force << "," << 2 * p.force / young_ << ","
-         << 2 * p.internal_energy << "," << 2 * p.external_work << "," << p.newton_iterations << ","
-         << p.negative_pivots << "," << p.seconds << "\n";
+         << 2 * p.internal_energy << "," << 2 * p.external_work << "," << 2 * p.contact_energy << "," << sa << ","
+         << 2 * p.external_work / reference_ << "," << 2 * p.internal_energy / reference_ << "," << sa / reference_
+         << "," << balance_error(p) << "," << p.active_faces << "," << p.skipped_faces << ","
+         << p.newton_iterations << "," << p.negative_pivots << "," << p.seconds << "\n";
     out_.flush();
   }
 
 private:
   std::ofstream out_;
-  double young_;
+  double young_, reference_, initial_contact_;
 };
 
 }  // namespace
@@ -48,15 +61,30 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
   const auto p1 = shape.point(1);
   const auto constraints =
       discretization::spatula_constraints(mesh, {p1.x, p1.y, p1.z}, scene.loading.hold_contact_surface);
-  auto system = Teuchos::rcp(new discretization::DiscreteSystem(mesh, partition, constraints, scene.material, comm));
+  discretization::SystemOptions options;
+  if (scene.adhesion.enabled) {
+    options.enrichment = scene.adhesion.settings.enrichment;
+    options.contact = contact::make_contact_model(scene.adhesion.settings);
+  }
+  auto system =
+      Teuchos::rcp(new discretization::DiscreteSystem(mesh, partition, constraints, scene.material, comm, options));
   solvers::LinearSolverFactory linear(scene.linear_solver);
   auto model = Teuchos::rcp(new solvers::SpatulaModel(system, linear.lows_factory()));
   solvers::NewtonSolver newton(model, scene.newton, linear);
   analysis::LoadPath path(*model, newton, root ? &out : nullptr, scene.output.convergence_tables);
 
   const double theta_s = shape.theta_s(), young = scene.material.young;
+  // Pi_c0 = A_c w_adh of the full spatula, with A_c the meshed contact area.
+  const double reference_energy =
+      options.contact ? 2.0 * system->contact_area() * options.contact->work_of_adhesion() : 1.0;
+  if (root && options.contact)
+    out << "adhesion: " << options.contact->description() << "\n"
+        << "  contact area A_c = " << 2.0 * system->contact_area() << " nm^2, Pi_c0 = A_c w_adh = " << reference_energy
+        << " nN nm = " << reference_energy / young << " E R0^3\n";
   std::unique_ptr<CurveWriter> curve;
-  if (root) curve = std::make_unique<CurveWriter>(directory->file("curve.csv"), young);
+  if (root)
+    curve = std::make_unique<CurveWriter>(directory->file("curve.csv"), young, reference_energy,
+                                          path.last().contact_energy);
   const char* stage = "rotation";
   auto write_fields = [&](const discretization::Vector& x, double time) {
     io::FieldState state;
@@ -73,7 +101,12 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
       out << "step " << std::setw(4) << p.step << "  " << stage << "  theta_y " << std::fixed << std::setprecision(3)
           << std::setw(8) << (theta_s + p.rotation) / degree << " deg  u_z " << std::setw(9) << p.lift
           << " nm  M_y " << std::setprecision(4) << std::setw(10) << 2 * p.moment << " nN nm  P_z " << std::setw(9)
-          << 2 * p.force << " nN  Pi_int " << std::setw(9) << 2 * p.internal_energy << "  newton "
+          << 2 * p.force << " nN  Pi_int " << std::setw(9) << 2 * p.internal_energy;
+      if (options.contact)
+        out << "  Pi_sa/Pi_c0 " << std::setprecision(4) << curve->stored_adhesion(p) / reference_energy
+            << "  balance " << std::scientific << std::setprecision(1) << curve->balance_error(p) << std::fixed
+            << "  faces " << p.active_faces << "+" << p.skipped_faces;
+      out << "  newton "
           << p.newton_iterations << "  neg.piv " << p.negative_pivots << "  " << std::setprecision(1)
           << p.seconds << " s" << std::defaultfloat << std::endl;
     }
@@ -85,11 +118,15 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
   if (root) curve->write(path.last(), stage, theta_s);
   write_fields(path.state(), theta_s / degree);
   const auto& loading = scene.loading;
-  auto failure = path.advance(discretization::Master::rotation, loading.theta_y * degree - theta_s, loading.free_lift,
-                              loading.rotation_steps, degree, on_point);
+  using analysis::LoadPath;
+  using discretization::Master;
+  auto failure = path.advance(Master::rotation, loading.theta_y * degree - theta_s,
+                              LoadPath::spatula_control(Master::rotation, loading.free_lift), loading.rotation_steps,
+                              degree, on_point);
   if (!failure && loading.type == "lift") {
     stage = "lift";
-    failure = path.advance(discretization::Master::lift, loading.final_lift, false, loading.lift_steps, 1.0, on_point);
+    failure = path.advance(Master::lift, loading.final_lift, LoadPath::spatula_control(Master::lift, false),
+                           loading.lift_steps, 1.0, on_point);
   }
   const auto& last = path.last();
   if (scene.output.field_interval == 0 || last.step % scene.output.field_interval != 0)

@@ -55,7 +55,7 @@ LoadPath::LoadPath(solvers::SpatulaModel& model, const solvers::NewtonSolver& ne
       x_(model.system().create_vector()), previous_(model.system().create_vector()), started_(now())
 {
   auto& system = model_.system();
-  system.set_control({{true, true}});
+  system.set_control({{true, true, true}});
   points_.push_back(measure(0, -1));
   previous_->assign(*x_);
 }
@@ -68,29 +68,40 @@ LoadPoint LoadPath::measure(int iterations, int negative_pivots)
   point.step = static_cast<int>(points_.size());
   point.rotation = system.master(*x_, Master::rotation);
   point.lift = system.master(*x_, Master::lift);
+  point.slide = system.master(*x_, Master::slide);
   point.moment = evaluation.master_residual[0];
   point.force = evaluation.master_residual[1];
+  point.slide_force = evaluation.master_residual[2];
   point.internal_energy = evaluation.internal_energy;
+  point.contact_energy = evaluation.contact_energy;
+  point.active_faces = evaluation.active_contact_faces;
+  point.skipped_faces = evaluation.skipped_contact_faces;
   point.newton_iterations = iterations;
   point.negative_pivots = negative_pivots;
   point.seconds = now() - started_;
   if (!points_.empty()) {
     const auto& last = points_.back();
     point.external_work = last.external_work + 0.5 * (last.moment + point.moment) * (point.rotation - last.rotation) +
-                          0.5 * (last.force + point.force) * (point.lift - last.lift);
+                          0.5 * (last.force + point.force) * (point.lift - last.lift) +
+                          0.5 * (last.slide_force + point.slide_force) * (point.slide - last.slide);
   }
   return point;
 }
 
-std::optional<Failure> LoadPath::advance(Master controlled, double target, bool other_free,
+discretization::MasterControl LoadPath::spatula_control(Master controlled, bool other_free)
+{
+  discretization::MasterControl control;   // all prescribed: slide (X) held
+  if (controlled != Master::slide) control.prescribed[controlled == Master::rotation ? 1 : 0] = !other_free;
+  return control;
+}
+
+std::optional<Failure> LoadPath::advance(Master controlled, double target, discretization::MasterControl control,
                                          const StepParameters& steps, double unit, const Callback& on_point)
 {
   auto& system = model_.system();
-  discretization::MasterControl control;
   control.prescribed[static_cast<int>(controlled)] = true;
-  control.prescribed[1 - static_cast<int>(controlled)] = !other_free;
   system.set_control(control);
-  const char* name = controlled == Master::rotation ? "theta" : "u_z";
+  const char* name = controlled == Master::rotation ? "theta" : controlled == Master::lift ? "lift" : "slide";
 
   double value = system.master(*x_, controlled);
   double increment = steps.initial * unit;

@@ -30,10 +30,14 @@ struct StepParameters {
 struct LoadPoint {
   int step = 0;
   double rotation = 0.0;     // alpha [rad] (theta_y = theta_s + alpha)
-  double lift = 0.0;         // w [nm], the face centre's Z displacement
+  double lift = 0.0;         // w [nm], the face centre's displacement along the lift direction (spatula: u_z)
+  double slide = 0.0;        // s [nm], along the slide direction (spatula: X, held at 0)
   double moment = 0.0;       // M_y on the face [nN nm]
-  double force = 0.0;        // P_z on the face [nN]
+  double force = 0.0;        // force on the face along the lift direction (spatula: P_z) [nN]
+  double slide_force = 0.0;  // force on the face along the slide direction [nN]
   double internal_energy = 0.0;   // Pi_int [nN nm]
+  double contact_energy = 0.0;    // Pi_c [nN nm]
+  int active_faces = 0, skipped_faces = 0;   // contact faces integrated / beyond the cut-off
   double external_work = 0.0;     // int M dalpha + int P dw along the path [nN nm]
   int newton_iterations = 0;
   int negative_pivots = -1;
@@ -57,11 +61,15 @@ public:
   const LoadPoint& last() const { return points_.back(); }
   const std::vector<LoadPoint>& points() const { return points_; }
 
-  // Moves `controlled` (prescribed) from its current value to `target`, with the other master free or held as
-  // `other_free` says. Calls `on_point` after every converged step. Returns the failure, if any.
+  // Moves `controlled` from its current value to `target`; `control` says which masters are prescribed (the
+  // controlled one always is; the others keep their values). Calls `on_point` after every converged step.
+  // Returns the failure, if any.
   using Callback = std::function<void(const LoadPoint&, const Vector&)>;
-  std::optional<Failure> advance(Master controlled, double target, bool other_free, const StepParameters& steps,
-                                 double unit, const Callback& on_point);
+  std::optional<Failure> advance(Master controlled, double target, discretization::MasterControl control,
+                                 const StepParameters& steps, double unit, const Callback& on_point);
+
+  // The usual spatula control: X (slide) held, `controlled` prescribed, the other of rotation/lift free or not.
+  static discretization::MasterControl spatula_control(Master controlled, bool other_free);
 
 private:
   LoadPoint measure(int iterations, int negative_pivots);

@@ -97,7 +97,7 @@ TEST(Adhesion, StiffBlockLiftedFeelsAreaTimesTractionMaximalAtRmin)
   analysis::LoadPath path(*model, newton, nullptr, false);
   analysis::StepParameters steps;
   steps.initial = steps.maximum = 0.01;
-  ASSERT_FALSE(path.advance(Master::lift, 0.3, false, steps, 1.0, {}).has_value());
+  ASSERT_FALSE(path.advance(Master::lift, 0.3, analysis::LoadPath::spatula_control(Master::lift, false), steps, 1.0, {}).has_value());
   const auto& lj = s.lennard_jones;
   const double area = 20.0 * 5.0;
   double strongest = 0.0, at = 0.0;
@@ -121,7 +121,7 @@ TEST(Adhesion, GlobalTangentWithContactAndEnrichmentIsTheResidualDerivative)
   auto comm = Teuchos::DefaultComm<int>::getComm();
   for (const std::string law : {"frictionless", "stiction"}) {
     auto system = spatula.system(settings(discretization::Enrichment::q1c2, law), comm);
-    system->set_control({{false, false}});
+    system->set_control({{false, false, false}});
     auto x = system->create_vector();
     std::vector<double> u(3 * spatula.mesh.node_count());
     for (std::int64_t n = 0; n < spatula.mesh.node_count(); ++n) {

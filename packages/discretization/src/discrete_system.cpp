@@ -111,7 +111,8 @@ struct DiscreteSystem::Implementation {
   SolidParameters solid;
   SystemOptions options;
   MasterControl control;
-  std::array<double, 3> face_centre{}, lift_direction{};
+  std::array<double, 3> face_centre{};
+  RigidFaceDirections directions;
 
   std::vector<std::int64_t> hex8;         // this rank's Hex8 elements (mesh ids)
   std::vector<std::size_t> hex13;         // this rank's Hex13 elements (indices into space.hex13_nodes)
@@ -123,7 +124,7 @@ struct DiscreteSystem::Implementation {
   Teuchos::RCP<FECrsMatrix> matrix;
   Teuchos::RCP<FEMultiVector> residual;
   Teuchos::RCP<Vector> state;                 // on the overlap map
-  std::array<int, master_count> master_unknown{-1, -1};
+  std::array<int, master_count> master_unknown{-1, -1, -1};
   double half_contact_area = 0.0;
 
   DeviceView<int**> hex8_nodes, hex13_nodes;
@@ -140,8 +141,12 @@ struct DiscreteSystem::Implementation {
                  const SystemOptions& options_)
       : comm(std::move(comm_)), mesh(mesh_), space(make_node_space(mesh_, partition, options_.enrichment)),
         layout(make_dof_layout(space, constraints, partition.ranks)), solid(solid_), options(options_),
-        face_centre(constraints.rigid_centre), lift_direction(constraints.lift_direction)
+        face_centre(constraints.rigid_centre)
   {
+    for (int i = 0; i < 3; ++i) {
+      directions.lift[i] = constraints.lift_direction[i];
+      directions.slide[i] = constraints.slide_direction[i];
+    }
     const int rank = comm->getRank();
     for (auto e : space.hex8_elements)
       if (partition.element_owner[e] == rank) hex8.push_back(e);
@@ -186,7 +191,7 @@ struct DiscreteSystem::Implementation {
     overlap = Teuchos::rcp(new Map(invalid, overlap_ids.data(), overlap_ids.size(), 0, comm));
     importer = Teuchos::rcp(new Import(owned, overlap));
     for (int m = 0; m < master_count; ++m) master_unknown[m] = overlap->getLocalElement(layout.masters[m]);
-    if (touches_face && (master_unknown[0] < 0 || master_unknown[1] < 0))
+    if (touches_face && std::find(master_unknown.begin(), master_unknown.end(), -1) != master_unknown.end())
       throw std::logic_error("end-face masters missing from the overlap map");
 
     build_views(local_of);
@@ -329,7 +334,7 @@ struct DiscreteSystem::Implementation {
     Tpetra::endAssembly(*graph);
   }
 
-  ElementScatter make_scatter(double alpha, double lift, bool with_matrix)
+  ElementScatter make_scatter(const std::array<double, master_count>& masters, bool with_matrix)
   {
     ElementScatter scatter;
     scatter.column_of = column_of;
@@ -339,16 +344,22 @@ struct DiscreteSystem::Implementation {
     for (int m = 0; m < master_count; ++m) {
       scatter.master_unknown[m] = master_unknown[m];
       scatter.master_prescribed[m] = control.prescribed[m];
+      scatter.masters[m] = masters[m];
     }
-    for (int i = 0; i < 3; ++i) scatter.lift_direction[i] = lift_direction[i];
-    scatter.alpha = alpha;
-    scatter.lift = lift;
+    scatter.directions = directions;
     scatter.with_residual = true;
     scatter.with_matrix = with_matrix;
     scatter.state = state->getLocalViewDevice(Tpetra::Access::ReadOnly);
     scatter.residual = residual->getLocalViewDevice(Tpetra::Access::ReadWrite);
     if (with_matrix) scatter.matrix = matrix->getLocalMatrixDevice();
     return scatter;
+  }
+
+  std::array<double, master_count> master_values(const Vector& x) const
+  {
+    std::array<double, master_count> values{};
+    for (int m = 0; m < master_count; ++m) values[m] = master_value(x, Master(m));
+    return values;
   }
 
   double master_value(const Vector& x, Master which) const
@@ -378,7 +389,7 @@ struct DiscreteSystem::Implementation {
   {
     Evaluation result;
     state->doImport(x, *importer, Tpetra::INSERT);
-    const double alpha = master_value(x, Master::rotation), lift = master_value(x, Master::lift);
+    const auto masters = master_values(x);
     Tpetra::beginAssembly(*residual);
     residual->putScalar(0.0);
     if (with_jacobian) {
@@ -389,7 +400,7 @@ struct DiscreteSystem::Implementation {
     double energy = 0.0;
     ContactTotals contact;
     {
-      const auto scatter = make_scatter(alpha, lift, with_jacobian);
+      const auto scatter = make_scatter(masters, with_jacobian);
       {
         Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer(
             with_jacobian ? "spatula: assembly bulk (residual + tangent)" : "spatula: assembly bulk (residual)"));
@@ -518,10 +529,10 @@ namespace {
 // Displacements of every node of the space (N x 3), complete on every rank.
 std::vector<double> space_displacements(const DiscreteSystem& system, const Vector& x, const NodeSpace& space,
                                         const DofLayout& layout, const std::array<double, 3>& centre,
-                                        const std::array<double, 3>& lift_direction,
-                                        const Teuchos::Comm<int>& comm)
+                                        const RigidFaceDirections& directions, const Teuchos::Comm<int>& comm)
 {
-  const double alpha = system.master(x, Master::rotation), lift = system.master(x, Master::lift);
+  double masters[master_count];
+  for (int m = 0; m < master_count; ++m) masters[m] = system.master(x, Master(m));
   const int rank = comm.getRank();
   const auto map = x.getMap();
   const auto values = x.getData(0);
@@ -531,7 +542,7 @@ std::vector<double> space_displacements(const DiscreteSystem& system, const Vect
       if (rank != 0) continue;
       double d[3];
       for (int i = 0; i < 3; ++i) d[i] = space.coordinates[n][i] - centre[i];
-      const auto motion = rigid_face_motion(alpha, lift, d, lift_direction.data());
+      const auto motion = rigid_face_motion(masters, d, directions);
       for (int i = 0; i < 3; ++i) local[3 * n + i] = motion.u[i];
       continue;
     }
@@ -553,7 +564,7 @@ std::vector<double> space_displacements(const DiscreteSystem& system, const Vect
 std::vector<double> DiscreteSystem::node_displacements(const Vector& x) const
 {
   const auto& impl = *implementation_;
-  auto all = space_displacements(*this, x, impl.space, impl.layout, impl.face_centre, impl.lift_direction, *impl.comm);
+  auto all = space_displacements(*this, x, impl.space, impl.layout, impl.face_centre, impl.directions, *impl.comm);
   all.resize(3 * impl.space.mesh_nodes);
   return all;
 }
@@ -561,7 +572,7 @@ std::vector<double> DiscreteSystem::node_displacements(const Vector& x) const
 std::vector<double> DiscreteSystem::element_cauchy_trace(const Vector& x) const
 {
   const auto& impl = *implementation_;
-  const auto u = space_displacements(*this, x, impl.space, impl.layout, impl.face_centre, impl.lift_direction, *impl.comm);
+  const auto u = space_displacements(*this, x, impl.space, impl.layout, impl.face_centre, impl.directions, *impl.comm);
   const auto law = laws::NeoHookean::from_young(impl.solid.young, impl.solid.poisson);
   std::vector<double> local(impl.mesh.element_count(), 0.0), global(local.size(), 0.0);
   auto trace = [&](const auto& nodes, auto shape, int order) {

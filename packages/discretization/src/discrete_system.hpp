@@ -3,8 +3,8 @@
 // built once, and assembly of the residual and the consistent tangent by labelled Kokkos kernels over each rank's
 // elements (FECrsMatrix / FEMultiVector fill, shared rows summed at endFill).
 //
-// Unknowns are displacements [nm] and the two end-face masters: rotation alpha [rad] and lift w [nm]. Residual
-// rows are internal forces [nN] (the master rows: moment [nN nm] and Z force on the face, half spatula).
+// Unknowns are displacements [nm] and the three end-face masters: rotation alpha [rad], lift w and slide s [nm].
+// Residual rows are internal forces [nN] (the master rows: moment [nN nm] and forces on the face, half spatula).
 // A prescribed master keeps an identity row and no coupling (its value lives in the state vector); its internal
 // force is returned as the reaction.
 #include "contact_model.hpp"
@@ -33,7 +33,7 @@ struct SolidParameters {
 
 // Which end-face masters are prescribed (their values are then taken from the state vector).
 struct MasterControl {
-  std::array<bool, master_count> prescribed{true, true};
+  std::array<bool, master_count> prescribed{true, true, true};
 };
 
 struct Evaluation {
@@ -43,7 +43,7 @@ struct Evaluation {
   double contact_energy = 0.0;     // Pi_c of the half model [nN nm] (0 without adhesion)
   int active_contact_faces = 0;    // contact faces integrated (all ranks)
   int skipped_contact_faces = 0;   // contact faces beyond the cut-off, not integrated
-  std::array<double, master_count> master_residual{};   // moment [nN nm] and force [nN] on the face (half)
+  std::array<double, master_count> master_residual{};   // moment [nN nm], lift and slide forces [nN] (half)
 };
 
 // What the system contains besides the solid: the contact enrichment and an adhesion model (none: no contact).

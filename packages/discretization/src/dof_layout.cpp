@@ -40,8 +40,8 @@ DofLayout make_dof_layout(const NodeSpace& space, const Constraints& constraints
         if (!held[n][i]) layout.node_dofs[n][i] = next++;
     }
     if (rank == 0) {
-      layout.masters = {next, next + 1};
-      next += 2;
+      layout.masters = {next, next + 1, next + 2};
+      next += 3;
     }
     layout.rank_offsets.push_back(next);
   }

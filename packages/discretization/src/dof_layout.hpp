@@ -1,6 +1,6 @@
 #pragma once
 // Global numbering of the unknowns, identical on every rank: the free displacement components of the nodes
-// owned by rank 0, then the two master unknowns of the rigid end face (rotation, lift), then the free components
+// owned by rank 0, then the three master unknowns of the rigid end face (rotation, lift, slide), then the free components
 // of rank 1's nodes, and so on; each rank's block is contiguous (as MUMPS' distributed input wants).
 // Not unknowns: the fixed components listed in the constraints (u_y on the symmetry plane, ...), every component
 // of a rigid end-face node (it follows the masters, see rigid_face.hpp), and dependent enrichment nodes.
@@ -22,7 +22,8 @@ struct Constraints {
   std::vector<Fixed> fixed;
   std::vector<std::int64_t> rigid_nodes;
   std::array<double, 3> rigid_centre{};
-  std::array<double, 3> lift_direction{0.0, 0.0, 1.0};   // unit, in the X-Z plane
+  std::array<double, 3> lift_direction{0.0, 0.0, 1.0};    // d: unit, in the X-Z plane
+  std::array<double, 3> slide_direction{1.0, 0.0, 0.0};   // e: unit, in the X-Z plane
 };
 
 // The spatula's constraints: u_y = 0 on the symmetry plane, the end face rigid about P1 (lifted along Z), and
@@ -35,7 +36,7 @@ struct DofLayout {
 
   std::vector<std::array<std::int64_t, 3>> node_dofs;   // per node of the NodeSpace: global id or `fixed`
   std::vector<char> rigid;                              // node follows the end face
-  std::array<std::int64_t, 2> masters{};                 // global ids of rotation, lift
+  std::array<std::int64_t, 3> masters{};                 // global ids of rotation, lift, slide
   std::vector<std::int64_t> rank_offsets;               // rank r owns [offsets[r], offsets[r+1])
   std::int64_t count() const { return rank_offsets.back(); }
 };

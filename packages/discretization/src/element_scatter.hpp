@@ -29,16 +29,16 @@ struct ElementScatter {
   Kokkos::View<const int* [3], device_type> node_unknown;   // local unknown or one of the kinds above
   Kokkos::View<const double* [3], device_type> node_offset;   // X - c of rigid nodes
   Kokkos::View<const int* [2], device_type> node_parent;      // corners of dependent nodes (local ids)
-  int master_unknown[master_count] = {-1, -1};             // local ids of the masters (-1: not on this rank)
-  bool master_prescribed[master_count] = {true, true};
-  double alpha = 0.0, lift = 0.0;
-  double lift_direction[3] = {0.0, 0.0, 1.0};
+  int master_unknown[master_count] = {-1, -1, -1};         // local ids of the masters (-1: not on this rank)
+  bool master_prescribed[master_count] = {true, true, true};
+  double masters[master_count] = {0.0, 0.0, 0.0};          // alpha, w, s
+  RigidFaceDirections directions;
   bool with_residual = true, with_matrix = true;
 
   KOKKOS_INLINE_FUNCTION RigidFaceMotion motion(int node) const
   {
     const double d[3] = {node_offset(node, 0), node_offset(node, 1), node_offset(node, 2)};
-    return rigid_face_motion(alpha, lift, d, lift_direction);
+    return rigid_face_motion(masters, d, directions);
   }
 
   KOKKOS_INLINE_FUNCTION double component(int node, int i) const
@@ -66,11 +66,11 @@ struct ElementScatter {
   template <int N>
   KOKKOS_INLINE_FUNCTION void add(const int nodes[N], const double r[3 * N], const double (*K)[3 * N]) const
   {
-    constexpr int dofs = 3 * N, most = 3 * N + master_count;
+    constexpr int dofs = 3 * N, most = 3 * N + master_count, targets = 3;
     int unknowns[most];    // distinct local unknowns touched
     int count = 0;
-    int target[dofs][2];   // per element dof: positions in `unknowns` (or -1)
-    double coefficient[dofs][2];
+    int target[dofs][targets];   // per element dof: positions in `unknowns` (or -1)
+    double coefficient[dofs][targets];
     double second[dofs];   // d2u/dalpha2 of rigid components
     int alpha_position = -1;
     auto position_of = [&](int unknown) {
@@ -82,19 +82,21 @@ struct ElementScatter {
     for (int p = 0; p < dofs; ++p) {
       const int node = nodes[p / 3], i = p % 3;
       const int kind = node_unknown(node, i);
-      target[p][0] = target[p][1] = -1;
+      for (int t = 0; t < targets; ++t) target[p][t] = -1;
       second[p] = 0.0;
       if (kind >= 0) {
         target[p][0] = position_of(kind);
         coefficient[p][0] = 1.0;
       } else if (kind == rigid_component) {
         const RigidFaceMotion m = motion(node);
-        if (i != 1) {
+        if (i != 1) {   // the face moves in the X-Z plane only
           target[p][0] = alpha_position = position_of(master_unknown[0]);
           coefficient[p][0] = m.du_dalpha[i];
           second[p] = m.d2u_dalpha2[i];
           target[p][1] = position_of(master_unknown[1]);
-          coefficient[p][1] = lift_direction[i];
+          coefficient[p][1] = directions.lift[i];
+          target[p][2] = position_of(master_unknown[2]);
+          coefficient[p][2] = directions.slide[i];
         }
       } else if (kind == dependent_component) {
         for (int t = 0; t < 2; ++t) {
@@ -107,7 +109,7 @@ struct ElementScatter {
     }
     if (with_residual)
       for (int p = 0; p < dofs; ++p)
-        for (int t = 0; t < 2; ++t)
+        for (int t = 0; t < targets; ++t)
           if (target[p][t] >= 0)
             Kokkos::atomic_add(&residual(unknowns[target[p][t]], 0), coefficient[p][t] * r[p]);
     if (!with_matrix) return;
@@ -116,10 +118,10 @@ struct ElementScatter {
     for (int a = 0; a < count; ++a)
       for (int b = 0; b < count; ++b) reduced[a][b] = 0.0;
     for (int p = 0; p < dofs; ++p)
-      for (int s = 0; s < 2; ++s) {
+      for (int s = 0; s < targets; ++s) {
         if (target[p][s] < 0) continue;
         for (int q = 0; q < dofs; ++q)
-          for (int t = 0; t < 2; ++t)
+          for (int t = 0; t < targets; ++t)
             if (target[q][t] >= 0)
               reduced[target[p][s]][target[q][t]] += coefficient[p][s] * coefficient[q][t] * K[p][q];
       }
@@ -127,8 +129,9 @@ struct ElementScatter {
       for (int p = 0; p < dofs; ++p) reduced[alpha_position][alpha_position] += r[p] * second[p];
 
     auto prescribed = [&](int unknown) {
-      return (unknown == master_unknown[0] && master_prescribed[0]) ||
-             (unknown == master_unknown[1] && master_prescribed[1]);
+      for (int m = 0; m < master_count; ++m)
+        if (unknown == master_unknown[m] && master_prescribed[m]) return true;
+      return false;
     };
     int columns[most];
     double values[most];

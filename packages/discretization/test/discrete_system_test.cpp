@@ -50,7 +50,7 @@ TEST(DiscreteSystem, TangentIsTheResidualDerivative)
   Fixture fixture;
   auto comm = Teuchos::DefaultComm<int>::getComm();
   auto system = fixture.system(comm);
-  system->set_control({{false, false}});   // both masters free: their rows and couplings are tested too
+  system->set_control({{false, false, false}});   // all masters free: their rows and couplings are tested too
   auto x = system->create_vector();
   system->set_displacements(*x, fixture.field());
   system->set_master(*x, Master::rotation, 0.05);
@@ -98,7 +98,7 @@ TEST(DiscreteSystem, PrescribedMastersGiveIdentityRowsAndReactions)
     EXPECT_NE(evaluation.master_residual[m], 0.0);   // the reaction is kept
   }
   // The reactions equal the free system's master residuals.
-  system->set_control({{false, false}});
+  system->set_control({{false, false, false}});
   const auto free = system->evaluate(*x, f.get(), false);
   EXPECT_DOUBLE_EQ(system->master(*f, Master::rotation), evaluation.master_residual[0]);
   EXPECT_NEAR(free.master_residual[1], evaluation.master_residual[1], 1e-12 * std::abs(free.master_residual[1]));
@@ -115,7 +115,7 @@ TEST(DiscreteSystem, SameResultsOnAllRanksAndOnOne)
   auto x_world = distributed->create_vector(), x_self = serial->create_vector();
   distributed->set_displacements(*x_world, u);
   serial->set_displacements(*x_self, u);
-  for (auto* s : {distributed.get(), serial.get()}) s->set_control({{false, false}});
+  for (auto* s : {distributed.get(), serial.get()}) s->set_control({{false, false, false}});
   distributed->set_master(*x_world, Master::rotation, 0.04);
   serial->set_master(*x_self, Master::rotation, 0.04);
   auto f_world = distributed->create_vector(), f_self = serial->create_vector();
