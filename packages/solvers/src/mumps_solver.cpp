@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -106,6 +107,7 @@ struct MumpsSolver::Implementation {
     icntl(id, 14) = parameters.memory_relaxation;
     icntl(id, 20) = 0;   // dense centralized right-hand side
     icntl(id, 21) = 0;   // centralized solution
+    icntl(id, 24) = 1;   // null pivot detection: an exactly singular tangent (at a fold) still gives a direction
   }
 
   ~Implementation()
@@ -148,6 +150,9 @@ struct MumpsSolver::Implementation {
     Teuchos::reduceAll(*map->getComm(), Teuchos::REDUCE_MAX, changed, Teuchos::outArg(changed));
     const bool pattern = changed != 0;
     collect(matrix, pattern);
+    int finite = std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
+    Teuchos::reduceAll(*map->getComm(), Teuchos::REDUCE_MIN, finite, Teuchos::outArg(finite));
+    if (!finite) throw std::runtime_error("MUMPS factorization refused: the tangent has non-finite entries");
     id.n = static_cast<int>(map->getGlobalNumElements());
     id.nnz_loc = static_cast<MUMPS_INT8>(rows.size());
     id.irn_loc = rows.data();
@@ -180,6 +185,7 @@ struct MumpsSolver::Implementation {
     ++statistics.factorizations;
     statistics.factorization_seconds += seconds_since(start);
     statistics.negative_pivots = parameters.symmetric ? infog(id, 12) : -1;
+    statistics.null_pivots = infog(id, 28);
   }
 
   void solve(const MultiVector& X, MultiVector& Y, double alpha, double beta) const

@@ -33,6 +33,7 @@ struct MumpsStatistics {
   int solves = 0;
   int negative_pivots = -1;   // from the last factorization (symmetric mode), -1 if unknown
   int workspace_increases = 0;   // factorizations repeated with a larger ICNTL(14)
+  int null_pivots = 0;          // of the last factorization (ICNTL(24) null pivot detection)
   double analysis_seconds = 0.0, factorization_seconds = 0.0, solve_seconds = 0.0;
 };
 

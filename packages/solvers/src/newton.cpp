@@ -138,10 +138,13 @@ NewtonResult NewtonSolver::solve(discretization::Vector& x, std::ostream* table)
                                                                        : "Full Step";
   auto& line_search = list->sublist("Line Search");
   line_search.set("Method", method);
-  line_search.sublist("Backtrack").set("Max Iters", 12);
-  line_search.sublist("Backtrack").set("Minimum Step", 1e-4);
-  line_search.sublist("Polynomial").set("Max Iters", 12);
-  line_search.sublist("Polynomial").set("Minimum Step", 1e-4);
+  // When no step reduces |f|, NOX takes its recovery step (a full step); adhesion problems often need it (|f| is
+  // not monotone along good Newton steps). A non-finite or inverted result is caught by the model instead.
+  for (const char* kind : {"Backtrack", "Polynomial"}) {
+    auto& sub = line_search.sublist(kind);
+    sub.set("Max Iters", 12);
+    sub.set("Minimum Step", 1e-4);
+  }
   list->sublist("Direction").set("Method", "Newton");
   list->sublist("Direction").sublist("Newton").sublist("Linear Solver").set(
       "Tolerance", linear_solver_.parameters().tolerance);

@@ -1,6 +1,8 @@
 #include "spatula_model.hpp"
 
 #include <Thyra_TpetraLinearOp.hpp>
+
+#include <cmath>
 #include <Thyra_TpetraThyraWrappers.hpp>
 
 namespace spatula::solvers {
@@ -63,7 +65,16 @@ void SpatulaModel::evalModelImpl(const Base::InArgs<double>& in, const Base::Out
   const auto f = f_out.is_null() ? Teuchos::null : Extract::getTpetraVector(f_out);
   const bool with_jacobian = !W_out.is_null();
   ++(with_jacobian ? counters_.jacobians : counters_.residuals);
-  last_ = system_->evaluate(*x, f.get(), with_jacobian);
+  // A state with non-finite entries (a failed linear solve upstream) is inadmissible as it stands.
+  if (!std::isfinite(x->norm1())) {
+    last_ = discretization::Evaluation{};
+    last_.admissible = false;
+  } else {
+    last_ = system_->evaluate(*x, f.get(), with_jacobian);
+  }
+  if (!last_.admissible && with_jacobian)
+    throw std::runtime_error("tangent asked at an inadmissible state (inverted element " +
+                             std::to_string(last_.inverted_element) + " or non-finite displacements)");
   if (!last_.admissible) {
     // An inverted element: no residual exists. A huge one makes NOX's line search step back.
     ++counters_.inadmissible;
