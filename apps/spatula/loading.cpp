@@ -4,6 +4,12 @@
 
 namespace spatula::app {
 
+const std::vector<std::string>& instability_methods()
+{
+  static const std::vector<std::string> methods = {"stop", "jump", "arc-length"};
+  return methods;
+}
+
 const std::vector<std::string>& loading_types()
 {
   static const std::vector<std::string> types = {"none", "rotation", "lift"};
@@ -29,6 +35,21 @@ void LoadingParameters::declare(Teuchos::ParameterList& loading)
       parameters::declare_sublist(loading, "Rotation Steps", "increments of theta_y [deg]"), 1.0, 1e-3, 5.0);
   analysis::StepParameters::declare(
       parameters::declare_sublist(loading, "Lift Steps", "increments of u_z [nm]"), 2.0, 1e-3, 10.0);
+  parameters::declare_string(loading, "past instabilities", "jump",
+                             "where no equilibrium follows at a larger load (a snap): stop; jump at fixed load by "
+                             "damped (proximal) iterations to the next stable state; or follow the path round the "
+                             "fold by arc-length continuation (LOCA)",
+                             instability_methods());
+  auto& jump = parameters::declare_sublist(loading, "Jump", "damped iterations past an instability");
+  parameters::declare_double(jump, "initial damping", 1.0, "eta_0 over the mean |diagonal| of the tangent",
+                             Range::positive());
+  parameters::declare_double(jump, "reduction", 0.3, "eta factor after each damped stage", {0.0, 1.0, true, true});
+  parameters::declare_int(jump, "maximum stages", 60, "damped stages per jump", Range::closed(1, 10000));
+  auto& arc = parameters::declare_sublist(loading, "Arc Length", "LOCA arc-length steps (scaled norm)");
+  parameters::declare_double(arc, "initial", 0.02, "first step", Range::positive());
+  parameters::declare_double(arc, "minimum", 1e-5, "smallest step", Range::positive());
+  parameters::declare_double(arc, "maximum", 0.5, "largest step", Range::positive());
+  parameters::declare_int(arc, "maximum steps", 200, "steps per fold", Range::closed(1, 100000));
 }
 
 LoadingParameters LoadingParameters::from(const Teuchos::ParameterList& loading)
@@ -41,6 +62,16 @@ LoadingParameters LoadingParameters::from(const Teuchos::ParameterList& loading)
   p.hold_contact_surface = loading.get<bool>("hold contact surface");
   p.rotation_steps = analysis::StepParameters::from(loading.sublist("Rotation Steps"), "Loading/Rotation Steps");
   p.lift_steps = analysis::StepParameters::from(loading.sublist("Lift Steps"), "Loading/Lift Steps");
+  p.past_instabilities = loading.get<std::string>("past instabilities");
+  const auto& jump = loading.sublist("Jump");
+  p.jump.initial_damping = jump.get<double>("initial damping");
+  p.jump.reduction = jump.get<double>("reduction");
+  p.jump.maximum_stages = jump.get<int>("maximum stages");
+  const auto& arc = loading.sublist("Arc Length");
+  p.arc_length_steps.initial = arc.get<double>("initial");
+  p.arc_length_steps.minimum = arc.get<double>("minimum");
+  p.arc_length_steps.maximum = arc.get<double>("maximum");
+  p.arc_length_steps.maximum_steps = arc.get<int>("maximum steps");
   return p;
 }
 

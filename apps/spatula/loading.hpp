@@ -17,11 +17,15 @@ struct LoadingParameters {
   bool free_lift = true;          // while rotating: zero net Z force on the face (else u_z held at 0)
   bool hold_contact_surface = false;   // the pad's bottom held at Z = 0 (a check without adhesion)
   analysis::StepParameters rotation_steps, lift_steps;
+  std::string past_instabilities = "jump";   // a name in instability_methods()
+  analysis::JumpParameters jump;
+  analysis::ArcLengthParameters arc_length_steps;
 
   static void declare(Teuchos::ParameterList& loading);
   static LoadingParameters from(const Teuchos::ParameterList& loading);
 };
 
 const std::vector<std::string>& loading_types();
+const std::vector<std::string>& instability_methods();   // "stop", "jump", "arc-length"
 
 }  // namespace spatula::app

@@ -72,6 +72,9 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
   auto model = Teuchos::rcp(new solvers::SpatulaModel(system, linear.lows_factory()));
   solvers::NewtonSolver newton(model, scene.newton, linear);
   analysis::LoadPath path(*model, newton, root ? &out : nullptr, scene.output.convergence_tables);
+  path.set_jump_parameters(scene.loading.jump);
+  if (scene.loading.past_instabilities == "jump") path.set_past_folds(analysis::LoadPath::PastFolds::jump);
+  if (scene.loading.past_instabilities == "arc-length") path.enable_arc_length(scene.loading.arc_length_steps);
 
   const double theta_s = shape.theta_s(), young = scene.material.young;
   // Pi_c0 = A_c w_adh of the full spatula, with A_c the meshed contact area.

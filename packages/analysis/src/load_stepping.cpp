@@ -108,7 +108,7 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
   previous_increment_ = 0.0;   // no predictor across a change of the controlled load
   const double direction = target >= value ? 1.0 : -1.0;
   auto trial = system.create_vector();
-  while (direction * (target - value) > 1e-12 * std::max(1.0, std::abs(target))) {
+  while (!detached_ && direction * (target - value) > 1e-12 * std::max(1.0, std::abs(target))) {
     increment = std::min(increment, direction * (target - value));
     // Secant predictor from the last two converged states (scaled to the new increment).
     trial->assign(*x_);
@@ -121,9 +121,36 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
                       << " failed (" << result.failure << "); cutting the increment\n";
       increment *= steps.cut;
       if (increment < steps.minimum * unit * (1 - 1e-12)) {
+        const double unreached = value + direction * increment / steps.cut;
+        if (past_folds_ == PastFolds::jump) {   // an instability: jump at the unreached load to the far side
+          if (log_) *log_ << "  " << name << " = " << unreached / unit << ": no equilibrium near the last one "
+                          << "(an instability); jumping to the next stable state\n";
+          auto failure = jump(controlled, unreached, on_point);
+          system.set_control(control);
+          if (failure) return failure;
+          value = unreached;
+          increment = steps.initial * unit;
+          previous_increment_ = 0.0;
+          continue;
+        }
+        if (past_folds_ == PastFolds::arc_length && direction > 0) {   // go round the fold, resume beyond
+          if (log_) *log_ << "  " << name << " = " << unreached / unit << " not reachable on this branch: arc-length "
+                          << "continuation round the fold\n";
+          auto failure = arc_length(controlled, unreached, control, *arc_length_, unit,
+                                    [&](const LoadPoint& p, const Vector& x) {
+            if (detachment_test_ && detachment_test_(p)) detached_ = true;
+            if (on_point) on_point(p, x);
+          });
+          system.set_control(control);
+          if (failure && !detached_) return failure;
+          value = system.master(*x_, controlled);
+          increment = steps.initial * unit;
+          previous_increment_ = 0.0;
+          continue;
+        }
         Failure failure;
         failure.step = static_cast<int>(points_.size());
-        failure.load = (value + direction * increment / steps.cut) / unit;
+        failure.load = unreached / unit;
         failure.smallest_increment = increment / steps.cut / unit;
         failure.reason = result.failure;
         return failure;
@@ -139,10 +166,82 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
     const int pivots = result.iterations.empty() ? -1 : result.iterations.back().negative_pivots;
     points_.push_back(measure(iterations, pivots));
     if (log_ && tables_) *log_ << table.str();
+    if (detachment_test_ && detachment_test_(points_.back())) detached_ = true;
     if (on_point) on_point(points_.back(), *x_);
     if (iterations <= steps.easy_iterations) increment = std::min(increment * steps.growth, steps.maximum * unit);
   }
   return std::nullopt;
+}
+
+void LoadPath::accept(const Vector& x, int iterations, int negative_pivots, const Callback& on_point)
+{
+  previous_->assign(*x_);
+  x_->assign(x);
+  previous_increment_ = 0.0;
+  points_.push_back(measure(iterations, negative_pivots));
+  if (on_point) on_point(points_.back(), *x_);
+}
+
+std::optional<Failure> LoadPath::jump(Master controlled, double value, const Callback& on_point)
+{
+  Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: jump past instability"));
+  auto& system = model_.system();
+  auto x = system.create_vector(), anchor = system.create_vector();
+  x->assign(*x_);
+  system.set_master(*x, controlled, value);
+  const auto before = points_.back();
+  system.evaluate(*x, nullptr, true);
+  double eta = jump_.initial_damping * system.mean_diagonal();
+  const double smallest = 1e-8 * system.mean_diagonal();
+  int stages = 0, newton_total = 0;
+  std::string reason = "the damping could not be reduced to zero";
+  for (; stages < jump_.maximum_stages; ++stages) {
+    anchor->assign(*x);
+    system.set_damping(eta, anchor);
+    const auto damped = newton_.solve(*x, nullptr);
+    newton_total += damped.iterations.empty() ? 0 : damped.iterations.back().iteration;
+    if (!damped.converged) {   // too little damping for this stage: more, from the same start
+      if (log_ && tables_) *log_ << "    damped stage " << stages << ": eta " << eta << " failed: " << damped.failure << "\n";
+      x->assign(*anchor);
+      eta *= 4.0;
+      continue;
+    }
+    // Close enough to a stable state for plain Newton?
+    system.set_damping(0.0, Teuchos::null);
+    auto trial = system.create_vector();
+    trial->assign(*x);
+    const auto plain = newton_.solve(*trial, nullptr);
+    if (plain.converged) {
+      x->assign(*trial);
+      newton_total += plain.iterations.empty() ? 0 : plain.iterations.back().iteration;
+      system.set_damping(0.0, Teuchos::null);
+      accept(*x, newton_total, plain.iterations.empty() ? -1 : plain.iterations.back().negative_pivots, {});
+      auto& after = points_.back();
+      after.after_jump = true;
+      after.released = (before.internal_energy + before.contact_energy) - (after.internal_energy + after.contact_energy) +
+                       (after.external_work - before.external_work);
+      if (log_)
+        *log_ << "  jumped in " << stages + 1 << " damped stages (" << newton_total << " Newton iterations), released "
+              << 2.0 * after.released << " nN nm (full spatula)\n";
+      if (detachment_test_ && detachment_test_(after)) detached_ = true;
+      if (on_point) on_point(after, *x_);
+      return std::nullopt;
+    }
+    if (log_ && tables_)
+      *log_ << "    damped stage " << stages << ": eta " << eta << ", " << damped.iterations.size()
+            << " iterations; plain Newton: " << plain.failure << "\n";
+    eta *= jump_.reduction;
+    if (eta < smallest) {
+      reason = "plain Newton does not converge even with the damping reduced to " + std::to_string(eta);
+      break;
+    }
+  }
+  system.set_damping(0.0, Teuchos::null);
+  Failure failure;
+  failure.step = static_cast<int>(points_.size());
+  failure.load = value;
+  failure.reason = "jump past the instability failed after " + std::to_string(stages) + " damped stages: " + reason;
+  return failure;
 }
 
 }  // namespace spatula::analysis

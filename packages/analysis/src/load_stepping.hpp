@@ -42,6 +42,25 @@ struct LoadPoint {
   int newton_iterations = 0;
   int negative_pivots = -1;
   double seconds = 0.0;      // wall time since the run began
+  bool after_jump = false;   // the first state on the far side of an instability
+  double released = 0.0;     // energy released in that jump (Pi_int + Pi_c before minus after, at fixed load) [nN nm]
+};
+
+// The jump past an instability at fixed load: proximal-point (damped) iterations
+//   x_k+1 = argmin Pi(x) + eta_k / 2 |x - x_k|^2,   eta_k decreasing,
+// each a Newton solve with the tangent K + eta I, descend the energy from the last stable state to a stable state
+// on the far side of the snap, where the undamped Newton then converges. It acts like viscous dissipation: the
+// energy released in the jump is reported.
+struct JumpParameters {
+  double initial_damping = 1.0;   // eta_0 over the mean |diagonal| of the tangent
+  double reduction = 0.3;         // eta factor after a stage that converged
+  int maximum_stages = 60;
+};
+
+// Arc-length continuation (LOCA) in the controlled master, used to go round folds of the load path.
+struct ArcLengthParameters {
+  double initial = 0.02, minimum = 1e-5, maximum = 0.5;   // arc-length steps (LOCA's scaled norm)
+  int maximum_steps = 200;
 };
 
 struct Failure {
@@ -63,13 +82,39 @@ public:
 
   // Moves `controlled` from its current value to `target`; `control` says which masters are prescribed (the
   // controlled one always is; the others keep their values). Calls `on_point` after every converged step.
-  // Returns the failure, if any.
+  // Where the increment has to be cut below its minimum (a fold of the path: the load cannot grow along this
+  // branch), the path is followed by arc-length continuation round the fold if enabled, and stepping resumes on
+  // the far side. Stops early, without failure, once `detached()` is true. Returns the failure, if any.
   using Callback = std::function<void(const LoadPoint&, const Vector&)>;
   std::optional<Failure> advance(Master controlled, double target, discretization::MasterControl control,
                                  const StepParameters& steps, double unit, const Callback& on_point);
 
   // The usual spatula control: X (slide) held, `controlled` prescribed, the other of rotation/lift free or not.
   static discretization::MasterControl spatula_control(Master controlled, bool other_free);
+
+  // Follows the path by arc-length in `controlled` from the current state (it may fall and rise again round a
+  // fold) until it exceeds `resume_above` (in the direction of increasing load) or the step budget is spent.
+  // Every converged point is recorded and reported like a load step.
+  std::optional<Failure> arc_length(Master controlled, double resume_above, discretization::MasterControl control,
+                                    const ArcLengthParameters& parameters, double unit, const Callback& on_point);
+
+  // How to get past a fold (an instability): stop (default), jump at fixed load, or arc-length continuation.
+  enum class PastFolds { stop, jump, arc_length };
+  void set_past_folds(PastFolds mode) { past_folds_ = mode; }
+  void set_jump_parameters(const JumpParameters& parameters) { jump_ = parameters; }
+  void enable_arc_length(const ArcLengthParameters& parameters)
+  {
+    arc_length_ = parameters;
+    past_folds_ = PastFolds::arc_length;
+  }
+  // Jumps at fixed `controlled` = value from the current state to a stable equilibrium (see JumpParameters).
+  std::optional<Failure> jump(Master controlled, double value, const Callback& on_point);
+  // The detachment test that ends a path cleanly.
+  void set_detachment_test(std::function<bool(const LoadPoint&)> test) { detachment_test_ = std::move(test); }
+  bool detached() const { return detached_; }
+
+  // Accepts a converged state found outside `advance` (continuation, restart): it becomes the new last point.
+  void accept(const Vector& x, int iterations, int negative_pivots, const Callback& on_point);
 
 private:
   LoadPoint measure(int iterations, int negative_pivots);
@@ -82,6 +127,11 @@ private:
   double previous_increment_ = 0.0;
   std::vector<LoadPoint> points_;
   double started_ = 0.0;
+  std::optional<ArcLengthParameters> arc_length_;
+  PastFolds past_folds_ = PastFolds::stop;
+  JumpParameters jump_;
+  std::function<bool(const LoadPoint&)> detachment_test_;
+  bool detached_ = false;
 };
 
 }  // namespace spatula::analysis

@@ -67,7 +67,7 @@ TEST(LennardJones, DerivativesAgainstFiniteDifferences)
   law.r_reg = 0.8 * law.equilibrium_gap();
   law.r_cut = 4.0;
   const double h = 1e-7;
-  for (double r : {-0.1, 0.1, 0.2, 0.25, 0.2547, 0.3, 0.5, 1.0, 3.0}) {
+  for (double r : {-0.1, 0.1, 0.2, 0.25, 0.2547, 0.3, 0.5, 1.0, 2.5, 3.0, 3.9}) {
     double p, d1, d2, pp, dp, d2p, pm, dm, d2m;
     law.evaluate(r, p, d1, d2);
     law.evaluate(r + h, pp, dp, d2p);
@@ -99,6 +99,17 @@ TEST(LennardJones, RegularizationIsC1AndFiniteAndTheCutOffConstant)
   law.exact(4.0, at_cut, unused1, unused2);
   EXPECT_EQ(phi, at_cut);
   EXPECT_EQ(dphi, 0.0);
+  // The taper from r_cut / 2 to r_cut: phi, phi', phi'' continuous at both ends, the law exact below r_cut / 2.
+  for (double r : {2.0, 4.0}) {
+    double a[3], b[3];
+    law.evaluate(r - 1e-9, a[0], a[1], a[2]);
+    law.evaluate(r + 1e-9, b[0], b[1], b[2]);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[k], b[k], 1e-7 * (std::abs(a[k]) + 1e-6)) << "r = " << r << " k = " << k;
+  }
+  double exact[3], tapered[3];
+  law.exact(1.99, exact[0], exact[1], exact[2]);
+  law.evaluate(1.99, tapered[0], tapered[1], tapered[2]);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(exact[k], tapered[k]);
   // The cut-off leaves a tail of |phi(r_cut)| / w_adh = 0.54 (r0 / r_cut)^2 of the adhesion energy: 0.5 % here.
   EXPECT_NEAR(-at_cut / law.work_of_adhesion(), 0.5407 * std::pow(0.4 / 4.0, 2), 1e-4);
 }

@@ -123,8 +123,11 @@ struct DiscreteSystem::Implementation {
   Teuchos::RCP<FECrsGraph> graph;
   Teuchos::RCP<FECrsMatrix> matrix;
   Teuchos::RCP<FEMultiVector> residual;
+  Teuchos::RCP<FEMultiVector> coupling;       // d f / d(prescribed master), one column per master
   Teuchos::RCP<Vector> state;                 // on the overlap map
   std::array<int, master_count> master_unknown{-1, -1, -1};
+  double damping = 0.0;
+  Teuchos::RCP<const Vector> damping_anchor;
   double half_contact_area = 0.0;
 
   DeviceView<int**> hex8_nodes, hex13_nodes;
@@ -198,6 +201,7 @@ struct DiscreteSystem::Implementation {
     build_graph();
     matrix = Teuchos::rcp(new FECrsMatrix(graph));
     residual = Teuchos::rcp(new FEMultiVector(owned, graph->getImporter(), 1));
+    coupling = Teuchos::rcp(new FEMultiVector(owned, graph->getImporter(), master_count));
     state = Teuchos::rcp(new Vector(overlap));
     // Local column of every overlap unknown (the element kernels address matrix entries by local column).
     auto columns = Kokkos::create_mirror_view(column_of);
@@ -351,7 +355,10 @@ struct DiscreteSystem::Implementation {
     scatter.with_matrix = with_matrix;
     scatter.state = state->getLocalViewDevice(Tpetra::Access::ReadOnly);
     scatter.residual = residual->getLocalViewDevice(Tpetra::Access::ReadWrite);
-    if (with_matrix) scatter.matrix = matrix->getLocalMatrixDevice();
+    if (with_matrix) {
+      scatter.matrix = matrix->getLocalMatrixDevice();
+      scatter.coupling = coupling->getLocalViewDevice(Tpetra::Access::ReadWrite);
+    }
     return scatter;
   }
 
@@ -393,8 +400,9 @@ struct DiscreteSystem::Implementation {
     Tpetra::beginAssembly(*residual);
     residual->putScalar(0.0);
     if (with_jacobian) {
-      Tpetra::beginAssembly(*matrix);
+      Tpetra::beginAssembly(*matrix, *coupling);
       matrix->setAllToScalar(0.0);
+      coupling->putScalar(0.0);
     }
     DeviceView<std::int64_t[1]> inverted("inverted element");
     double energy = 0.0;
@@ -416,6 +424,23 @@ struct DiscreteSystem::Implementation {
         contact = options.contact->assemble(contact_faces, scatter);
         Kokkos::fence();
       }
+      // Proximal damping on the diagonal of every owned row that is not a prescribed master.
+      if (with_jacobian && damping > 0.0) {
+        auto local = matrix->getLocalMatrixDevice();
+        const auto columns = column_of;
+        const double eta = damping;
+        int skip[master_count];
+        for (int m = 0; m < master_count; ++m)
+          skip[m] = control.prescribed[m] ? owned->getLocalElement(layout.masters[m]) : -1;
+        const int rows = static_cast<int>(owned->getNodeNumElements());
+        Kokkos::parallel_for("spatula: proximal damping", Kokkos::RangePolicy<execution_space>(0, rows),
+                             KOKKOS_LAMBDA(int row) {
+                               for (int m = 0; m < master_count; ++m)
+                                 if (row == skip[m]) return;
+                               const int column = columns(row);
+                               local.sumIntoValues(row, &column, 1, &eta, false, true);
+                             });
+      }
       // Identity rows of prescribed masters (their owner adds the diagonal once).
       if (with_jacobian) {
         auto local = matrix->getLocalMatrixDevice();
@@ -436,7 +461,7 @@ struct DiscreteSystem::Implementation {
     {
       Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: assembly communication"));
       Tpetra::endAssembly(*residual);
-      if (with_jacobian) Tpetra::endAssembly(*matrix);
+      if (with_jacobian) Tpetra::endAssembly(*matrix, *coupling);
     }
     auto h_inverted = Kokkos::create_mirror_view(inverted);
     Kokkos::deep_copy(h_inverted, inverted);
@@ -462,6 +487,15 @@ struct DiscreteSystem::Implementation {
       result.master_residual[m] = reaction;
       if (unknown >= 0 && control.prescribed[m]) values[unknown] = 0.0;
     }
+    if (damping > 0.0) {
+      const auto anchor = damping_anchor->getData(0);
+      const auto state_values = x.getData(0);
+      for (std::size_t i = 0; i < owned->getNodeNumElements(); ++i) values[i] += damping * (state_values[i] - anchor[i]);
+      for (int m = 0; m < master_count; ++m) {
+        const int unknown = owned->getLocalElement(layout.masters[m]);
+        if (unknown >= 0 && control.prescribed[m]) values[unknown] = 0.0;
+      }
+    }
     values = Teuchos::null;
     if (out_residual) out_residual->assign(*residual);
     return result;
@@ -482,6 +516,21 @@ Teuchos::RCP<Vector> DiscreteSystem::create_vector() const { return Teuchos::rcp
 Teuchos::RCP<CrsMatrix> DiscreteSystem::jacobian() const { return implementation_->matrix; }
 const DofLayout& DiscreteSystem::layout() const { return implementation_->layout; }
 const NodeSpace& DiscreteSystem::nodes() const { return implementation_->space; }
+const MultiVector& DiscreteSystem::load_derivatives() const { return *implementation_->coupling; }
+
+void DiscreteSystem::set_damping(double eta, Teuchos::RCP<const Vector> anchor)
+{
+  implementation_->damping = eta;
+  implementation_->damping_anchor = std::move(anchor);
+}
+
+double DiscreteSystem::mean_diagonal() const
+{
+  const auto& matrix = *implementation_->matrix;
+  Vector diagonal(matrix.getRowMap());
+  matrix.getLocalDiagCopy(diagonal);
+  return diagonal.norm1() / static_cast<double>(diagonal.getGlobalLength());
+}
 double DiscreteSystem::contact_area() const { return implementation_->half_contact_area; }
 void DiscreteSystem::set_control(const MasterControl& control) { implementation_->control = control; }
 const MasterControl& DiscreteSystem::control() const { return implementation_->control; }

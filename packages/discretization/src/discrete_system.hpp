@@ -76,6 +76,18 @@ public:
   // Assembles what is asked: the residual (if non-null), the tangent into jacobian() (if `with_jacobian`).
   Evaluation evaluate(const Vector& x, Vector* residual, bool with_jacobian);
 
+  // After an evaluation with the tangent: column m holds d f / d(master m) for the prescribed masters (zero for
+  // free ones): the load vector of a continuation in that master.
+  const MultiVector& load_derivatives() const;
+
+  // Proximal damping for jumps past instabilities: with eta > 0 every evaluation solves for
+  //   f(x) + eta (x - anchor) = 0,  tangent K + eta I
+  // (prescribed master rows excluded), the stationarity condition of Pi(x) + eta/2 |x - anchor|^2. eta = 0 (the
+  // default) switches it off. The energies and reactions reported stay those of the undamped system.
+  void set_damping(double eta, Teuchos::RCP<const Vector> anchor);
+  // Mean absolute diagonal of the last assembled tangent (the scale for eta).
+  double mean_diagonal() const;
+
   // Writes nodal displacements u (N x 3, row-major, all mesh nodes) into the free unknowns of x that this rank
   // owns (fixed and rigid components are not unknowns and are ignored).
   void set_displacements(Vector& x, const std::vector<double>& u) const;

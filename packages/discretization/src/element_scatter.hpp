@@ -24,6 +24,7 @@ struct ElementScatter {
 
   local_matrix_type matrix;
   residual_view_type residual;
+  residual_view_type coupling;   // column m: d f / d(master m) of prescribed masters (with the matrix)
   state_view_type state;                                   // owned + shared values of the current state
   Kokkos::View<const int*, device_type> column_of;          // owned+shared local id -> local column
   Kokkos::View<const int* [3], device_type> node_unknown;   // local unknown or one of the kinds above
@@ -139,7 +140,11 @@ struct ElementScatter {
       if (prescribed(unknowns[a])) continue;
       int n = 0;
       for (int b = 0; b < count; ++b) {
-        if (prescribed(unknowns[b])) continue;
+        if (prescribed(unknowns[b])) {   // the load column of a prescribed master: kept aside (df/dp)
+          for (int m = 0; m < master_count; ++m)
+            if (unknowns[b] == master_unknown[m]) Kokkos::atomic_add(&coupling(unknowns[a], m), reduced[a][b]);
+          continue;
+        }
         columns[n] = column_of(unknowns[b]);
         values[n++] = reduced[a][b];
       }

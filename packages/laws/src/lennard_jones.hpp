@@ -10,7 +10,11 @@
 // w_adh = -phi(r_eq) = 15^(1/3) A / (16 pi r0^2).
 // Regularization in compression (r < r_reg < r_eq): T continues linearly with the slope it has at r_reg,
 //   T(r) = T(r_reg) + T'(r_reg) (r - r_reg),  phi(r) = phi(r_reg) - T(r_reg)(r - r_reg) - T'(r_reg)(r - r_reg)^2 / 2,
-// so T is C1 and finite for any r (also r <= 0). Cut-off (r > r_cut): T = 0 and phi = phi(r_cut).
+// so T is C1 and finite for any r (also r <= 0). Cut-off: between r_cut / 2 and r_cut the law is blended into the
+// constant phi(r_cut) with the quintic smootherstep S (S = 1 at r_cut / 2, 0 at r_cut, S' = S'' = 0 at both ends),
+//   phi_t = phi(r_cut) + S (phi - phi(r_cut)),
+// so T and T' stay continuous (a hard cut would make the residual jump as points cross r_cut and stall Newton);
+// beyond r_cut T = 0 and phi = phi(r_cut). The law is exact up to r_cut / 2.
 #include <Kokkos_Core.hpp>
 
 #include <cmath>
@@ -44,11 +48,25 @@ struct LennardJones {
   // phi, phi' and phi'' with regularization and cut-off. Returns false beyond the cut-off (all three constant/0).
   KOKKOS_INLINE_FUNCTION bool evaluate(double r, double& phi, double& dphi, double& d2phi) const
   {
-    if (r > r_cut) {
+    if (r >= r_cut) {
       double d1, d2;
       exact(r_cut, phi, d1, d2);
       dphi = d2phi = 0.0;
       return false;
+    }
+    const double taper = 0.5 * r_cut;
+    if (r > taper) {
+      double p, d1, d2, p_cut, unused1, unused2;
+      exact(r, p, d1, d2);
+      exact(r_cut, p_cut, unused1, unused2);
+      const double width = r_cut - taper, t = (r - taper) / width;
+      const double S = 1.0 - t * t * t * (10.0 - 15.0 * t + 6.0 * t * t);
+      const double dS = -30.0 * t * t * (1.0 - t) * (1.0 - t) / width;
+      const double d2S = -60.0 * t * (1.0 - t) * (1.0 - 2.0 * t) / (width * width);
+      phi = p_cut + S * (p - p_cut);
+      dphi = dS * (p - p_cut) + S * d1;
+      d2phi = d2S * (p - p_cut) + 2.0 * dS * d1 + S * d2;
+      return true;
     }
     if (r < r_reg) {
       double p, d1, d2;

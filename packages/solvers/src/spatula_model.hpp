@@ -1,11 +1,15 @@
 #pragma once
 // The spatula's nonlinear system as a Thyra model evaluator over Tpetra (NOX reaches Tpetra only through Thyra
 // in Trilinos 13.2): x -> f(x) (the residual) and W = df/dx (the tangent, the system's FE matrix), with the linear
-// solver factory that NOX uses for the Newton steps.
+// solver factory that NOX uses for the Newton steps. For continuation (LOCA) one prescribed end-face master can
+// be exposed as the parameter p ("load"): its value is then taken from p instead of x, and df/dp is the load
+// vector the assembly sets aside (DiscreteSystem::load_derivatives).
 #include "discrete_system.hpp"
 
 #include <Thyra_LinearOpWithSolveFactoryBase.hpp>
 #include <Thyra_StateFuncModelEvaluatorBase.hpp>
+
+#include <optional>
 
 namespace spatula::solvers {
 
@@ -27,6 +31,12 @@ public:
   Teuchos::RCP<Thyra::LinearOpBase<double>> create_W_op() const override;
   Teuchos::RCP<const Thyra::LinearOpWithSolveFactoryBase<double>> get_W_factory() const override;
 
+  // Exposes (or, with nullopt, hides) a master as the continuation parameter p.
+  void set_continuation_parameter(std::optional<discretization::Master> master) { parameter_ = master; }
+
+  Teuchos::RCP<const Thyra::VectorSpaceBase<double>> get_p_space(int index) const override;
+  Teuchos::RCP<const Teuchos::Array<std::string>> get_p_names(int index) const override;
+
   discretization::DiscreteSystem& system() const { return *system_; }
   const ModelCounters& counters() const { return counters_; }
   // The last evaluation (reactions, energy, admissibility).
@@ -39,7 +49,8 @@ private:
 
   Teuchos::RCP<discretization::DiscreteSystem> system_;
   Teuchos::RCP<const Thyra::LinearOpWithSolveFactoryBase<double>> linear_solver_;
-  Teuchos::RCP<const Thyra::VectorSpaceBase<double>> space_;
+  Teuchos::RCP<const Thyra::VectorSpaceBase<double>> space_, parameter_space_;
+  std::optional<discretization::Master> parameter_;
   mutable ModelCounters counters_;
   mutable discretization::Evaluation last_;
 };
