@@ -2,6 +2,9 @@
 
 #include "parameter_validation.hpp"
 
+#include <algorithm>
+#include <sstream>
+
 namespace spatula::app {
 
 const std::vector<std::string>& instability_methods()
@@ -36,15 +39,18 @@ void LoadingParameters::declare(Teuchos::ParameterList& loading)
   analysis::StepParameters::declare(
       parameters::declare_sublist(loading, "Lift Steps", "increments of u_z [nm]"), 2.0, 1e-3, 10.0);
   parameters::declare_string(loading, "past instabilities", "jump",
-                             "where no equilibrium follows at a larger load (a snap): stop; jump at fixed load by "
-                             "damped (proximal) iterations to the next stable state; or follow the path round the "
-                             "fold by arc-length continuation (LOCA)",
+                             "where no equilibrium follows at a larger load (a snap): stop; jump at fixed load to the "
+                             "next stable state by energy descent; or follow the path round the fold by arc-length "
+                             "continuation (LOCA)",
                              instability_methods());
-  auto& jump = parameters::declare_sublist(loading, "Jump", "damped iterations past an instability");
-  parameters::declare_double(jump, "initial damping", 1.0, "eta_0 over the mean |diagonal| of the tangent",
-                             Range::positive());
-  parameters::declare_double(jump, "reduction", 0.3, "eta factor after each damped stage", {0.0, 1.0, true, true});
-  parameters::declare_int(jump, "maximum stages", 60, "damped stages per jump", Range::closed(1, 10000));
+  parameters::declare_string(loading, "restart file", "",
+                             "checkpoints.h5 of an earlier run to start from (empty: the undeformed spatula)");
+  parameters::declare_double(loading, "restart theta_y", 60.0, "the checkpoint to start from [deg]",
+                             Range::closed(-180.0, 180.0));
+  parameters::declare_string(loading, "checkpoints at theta_y", "",
+                             "comma-separated inclinations [deg] where a rotation writes checkpoints (e.g. 45,60)");
+  auto& jump = parameters::declare_sublist(loading, "Jump", "energy descent past an instability");
+  parameters::declare_int(jump, "maximum iterations", 500, "iterations per jump", Range::closed(1, 100000));
   auto& arc = parameters::declare_sublist(loading, "Arc Length", "LOCA arc-length steps (scaled norm)");
   parameters::declare_double(arc, "initial", 0.02, "first step", Range::positive());
   parameters::declare_double(arc, "minimum", 1e-5, "smallest step", Range::positive());
@@ -63,10 +69,26 @@ LoadingParameters LoadingParameters::from(const Teuchos::ParameterList& loading)
   p.rotation_steps = analysis::StepParameters::from(loading.sublist("Rotation Steps"), "Loading/Rotation Steps");
   p.lift_steps = analysis::StepParameters::from(loading.sublist("Lift Steps"), "Loading/Lift Steps");
   p.past_instabilities = loading.get<std::string>("past instabilities");
+  p.restart_file = loading.get<std::string>("restart file");
+  p.restart_theta_y = loading.get<double>("restart theta_y");
+  std::stringstream list(loading.get<std::string>("checkpoints at theta_y"));
+  for (std::string item; std::getline(list, item, ',');) {
+    if (item.find_first_not_of(" \t") == std::string::npos) continue;
+    std::size_t used = 0;
+    double value = 0.0;
+    try {
+      value = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || item.find_first_not_of(" \t", used) != std::string::npos || value < -180.0 || value > 180.0)
+      throw parameters::InputError("parameter 'Loading/checkpoints at theta_y': '" + item +
+                                   "' is not an inclination in [-180, 180] deg");
+    p.checkpoints.push_back(value);
+  }
+  std::sort(p.checkpoints.begin(), p.checkpoints.end());
   const auto& jump = loading.sublist("Jump");
-  p.jump.initial_damping = jump.get<double>("initial damping");
-  p.jump.reduction = jump.get<double>("reduction");
-  p.jump.maximum_stages = jump.get<int>("maximum stages");
+  p.jump.maximum_iterations = jump.get<int>("maximum iterations");
   const auto& arc = loading.sublist("Arc Length");
   p.arc_length_steps.initial = arc.get<double>("initial");
   p.arc_length_steps.minimum = arc.get<double>("minimum");

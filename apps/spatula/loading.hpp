@@ -18,6 +18,9 @@ struct LoadingParameters {
   bool hold_contact_surface = false;   // the pad's bottom held at Z = 0 (a check without adhesion)
   analysis::StepParameters rotation_steps, lift_steps;
   std::string past_instabilities = "jump";   // a name in instability_methods()
+  std::string restart_file;               // start from a checkpoint of an earlier run (empty: undeformed)
+  double restart_theta_y = 0.0;           // which one [deg]
+  std::vector<double> checkpoints;        // inclinations [deg] at which a rotation leaves checkpoints
   analysis::JumpParameters jump;
   analysis::ArcLengthParameters arc_length_steps;
 

@@ -1,7 +1,10 @@
 #include "simulation.hpp"
 
+#include "checkpoint.hpp"
+
 #include <Teuchos_TimeMonitor.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -118,15 +121,38 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
       write_fields(x, std::string(stage) == "rotation" ? (theta_s + p.rotation) / degree : p.lift);
   };
 
-  if (root) curve->write(path.last(), stage, theta_s);
-  write_fields(path.state(), theta_s / degree);
   const auto& loading = scene.loading;
+  if (!loading.restart_file.empty()) {
+    auto x = system->create_vector();
+    const auto history = read_checkpoint(loading.restart_file, loading.restart_theta_y, *system, *x, scene);
+    path.restart(*x, history);
+    if (root)
+      out << "restart from " << checkpoint_label(loading.restart_theta_y) << " of " << loading.restart_file
+          << " (step " << history.step << ", u_z " << history.lift << " nm)\n";
+  }
+  if (root) curve->write(path.last(), stage, theta_s);
+  write_fields(path.state(), (theta_s + path.last().rotation) / degree);
   using analysis::LoadPath;
   using discretization::Master;
-  auto failure = path.advance(Master::rotation, loading.theta_y * degree - theta_s,
-                              LoadPath::spatula_control(Master::rotation, loading.free_lift), loading.rotation_steps,
-                              degree, on_point);
-  if (!failure && loading.type == "lift") {
+  // The rotation, stopping at every checkpoint inclination on the way.
+  std::optional<analysis::Failure> failure;
+  std::vector<double> stops;
+  const double current = (theta_s + path.last().rotation) / degree;
+  for (double c : loading.checkpoints)
+    if (c > current + 1e-9 && c < loading.theta_y - 1e-9) stops.push_back(c);
+  stops.push_back(loading.theta_y);
+  for (double stop : stops) {
+    failure = path.advance(Master::rotation, stop * degree - theta_s,
+                           LoadPath::spatula_control(Master::rotation, loading.free_lift), loading.rotation_steps,
+                           degree, on_point);
+    if (failure || path.detached()) break;
+    if (std::find(loading.checkpoints.begin(), loading.checkpoints.end(), stop) != loading.checkpoints.end()) {
+      write_checkpoint(directory ? directory->file("checkpoints.h5") : "", stop, *system, path.state(), path.last(),
+                       scene);
+      if (root) out << "checkpoint " << checkpoint_label(stop) << " written\n";
+    }
+  }
+  if (!failure && !path.detached() && loading.type == "lift") {
     stage = "lift";
     failure = path.advance(Master::lift, loading.final_lift, LoadPath::spatula_control(Master::lift, false),
                            loading.lift_steps, 1.0, on_point);
@@ -139,7 +165,7 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
     out << "solver: " << model->counters().jacobians << " tangents, " << model->counters().residuals
         << " residual-only evaluations, " << model->counters().inadmissible << " inadmissible trial states";
     if (statistics.factorizations > 0)
-      out << "; MUMPS: " << statistics.analyses << " analyses, " << statistics.factorizations << " factorizations ("
+      out << "; MUMPS: " << statistics.analyses << " analyses, " << statistics.factorizations << " factorizations (" << statistics.reused << " tangents served by an earlier one, "
           << statistics.factorization_seconds << " s), " << statistics.solves << " solves";
     out << "\n";
   }

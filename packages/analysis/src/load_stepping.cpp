@@ -182,65 +182,112 @@ void LoadPath::accept(const Vector& x, int iterations, int negative_pivots, cons
   if (on_point) on_point(points_.back(), *x_);
 }
 
+void LoadPath::restart(const Vector& x, const LoadPoint& point)
+{
+  x_->assign(x);
+  previous_->assign(x);
+  previous_increment_ = 0.0;
+  points_.clear();
+  auto measured = measure(point.newton_iterations, point.negative_pivots);
+  measured.step = point.step;
+  measured.external_work = point.external_work;
+  points_.push_back(measured);
+}
+
 std::optional<Failure> LoadPath::jump(Master controlled, double value, const Callback& on_point)
 {
   Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: jump past instability"));
   auto& system = model_.system();
-  auto x = system.create_vector(), anchor = system.create_vector();
+  const auto before = points_.back();
+  auto x = system.create_vector(), f = system.create_vector(), direction = system.create_vector(),
+       trial = system.create_vector();
   x->assign(*x_);
   system.set_master(*x, controlled, value);
-  const auto before = points_.back();
-  system.evaluate(*x, nullptr, true);
-  double eta = jump_.initial_damping * system.mean_diagonal();
-  const double smallest = 1e-8 * system.mean_diagonal();
-  int stages = 0, newton_total = 0;
-  std::string reason = "the damping could not be reduced to zero";
-  for (; stages < jump_.maximum_stages; ++stages) {
-    anchor->assign(*x);
-    system.set_damping(eta, anchor);
-    const auto damped = newton_.solve(*x, nullptr);
-    newton_total += damped.iterations.empty() ? 0 : damped.iterations.back().iteration;
-    if (!damped.converged) {   // too little damping for this stage: more, from the same start
-      if (log_ && tables_) *log_ << "    damped stage " << stages << ": eta " << eta << " failed: " << damped.failure << "\n";
-      x->assign(*anchor);
-      eta *= 4.0;
+  solvers::MumpsSolver mumps(system.owned_map(), solvers::MumpsParameters{});
+  auto energy_at = [&](const Vector& state, bool& admissible) {
+    const auto evaluation = system.evaluate(state, nullptr, false);
+    admissible = evaluation.admissible;
+    return evaluation.internal_energy + evaluation.contact_energy;
+  };
+
+  double eta = 0.0, scale = 0.0;
+  int iteration = 0;
+  std::string reason = "no stable state within " + std::to_string(jump_.maximum_iterations) + " iterations";
+  for (; iteration < jump_.maximum_iterations; ++iteration) {
+    system.set_damping(eta, x);   // anchored at x: a pure shift of the tangent, f unchanged
+    const auto evaluation = system.evaluate(*x, f.get(), true);
+    system.set_damping(0.0, Teuchos::null);
+    if (!evaluation.admissible) {
+      reason = "an element inverted during the jump";
+      break;
+    }
+    if (scale == 0.0) scale = system.mean_diagonal();
+    int negative = 0;
+    try {
+      mumps.factor(*system.jacobian());
+      negative = mumps.statistics().negative_pivots;
+    } catch (const std::exception&) {
+      negative = 1;   // singular: treat like indefinite
+    }
+    if (negative > 0) {   // not a descent direction yet: shift more
+      eta = eta == 0.0 ? 1e-6 * scale : jump_.shift_growth * eta;
       continue;
     }
-    // Close enough to a stable state for plain Newton?
-    system.set_damping(0.0, Teuchos::null);
-    auto trial = system.create_vector();
-    trial->assign(*x);
-    const auto plain = newton_.solve(*trial, nullptr);
+    const double residual = f->norm2();
+    if (eta == 0.0 && residual < 1e-6) break;   // near a stable minimum: plain Newton finishes below
+    mumps.apply(*f, *direction);
+    direction->scale(-1.0);
+    const double slope = f->dot(*direction);
+    bool admissible = true;
+    const double energy = evaluation.internal_energy + evaluation.contact_energy;
+    // Line search on Pi with expansion.
+    double step = 1.0, best_step = 0.0, best_energy = energy;
+    for (int trial_count = 0; trial_count < 30; ++trial_count) {
+      trial->update(1.0, *x, step, *direction, 0.0);
+      const double value_at = energy_at(*trial, admissible);
+      const bool sufficient = admissible && value_at <= energy + 1e-4 * step * slope;
+      if (sufficient && value_at < best_energy) {
+        best_energy = value_at;
+        best_step = step;
+        if (step >= 1.0 && step < 64.0) {   // still descending: try further
+          step *= 2.0;
+          continue;
+        }
+        break;
+      }
+      if (best_step > 0.0) break;   // the expansion went too far: keep the best
+      step *= 0.5;
+    }
+    if (best_step == 0.0) {   // no decrease along this direction: stiffen the shift
+      eta = eta == 0.0 ? 1e-6 * scale : jump_.shift_growth * eta;
+      continue;
+    }
+    x->update(best_step, *direction, 1.0);
+    eta = best_step >= 1.0 ? 0.25 * eta : 2.0 * eta;
+    if (eta < 1e-9 * scale) eta = 0.0;
+  }
+  if (iteration < jump_.maximum_iterations) {
+    const auto plain = newton_.solve(*x, nullptr);
     if (plain.converged) {
-      x->assign(*trial);
-      newton_total += plain.iterations.empty() ? 0 : plain.iterations.back().iteration;
-      system.set_damping(0.0, Teuchos::null);
+      const int newton_total = iteration + (plain.iterations.empty() ? 0 : plain.iterations.back().iteration);
       accept(*x, newton_total, plain.iterations.empty() ? -1 : plain.iterations.back().negative_pivots, {});
       auto& after = points_.back();
       after.after_jump = true;
       after.released = (before.internal_energy + before.contact_energy) - (after.internal_energy + after.contact_energy) +
                        (after.external_work - before.external_work);
       if (log_)
-        *log_ << "  jumped in " << stages + 1 << " damped stages (" << newton_total << " Newton iterations), released "
+        *log_ << "  jumped in " << newton_total << " iterations (energy descent, then Newton), released "
               << 2.0 * after.released << " nN nm (full spatula)\n";
       if (detachment_test_ && detachment_test_(after)) detached_ = true;
       if (on_point) on_point(after, *x_);
       return std::nullopt;
     }
-    if (log_ && tables_)
-      *log_ << "    damped stage " << stages << ": eta " << eta << ", " << damped.iterations.size()
-            << " iterations; plain Newton: " << plain.failure << "\n";
-    eta *= jump_.reduction;
-    if (eta < smallest) {
-      reason = "plain Newton does not converge even with the damping reduced to " + std::to_string(eta);
-      break;
-    }
+    reason = "Newton did not confirm the state the energy descent reached (" + plain.failure + ")";
   }
-  system.set_damping(0.0, Teuchos::null);
   Failure failure;
   failure.step = static_cast<int>(points_.size());
   failure.load = value;
-  failure.reason = "jump past the instability failed after " + std::to_string(stages) + " damped stages: " + reason;
+  failure.reason = "jump past the instability failed after " + std::to_string(iteration) + " iterations: " + reason;
   return failure;
 }
 

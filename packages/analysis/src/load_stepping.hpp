@@ -46,15 +46,15 @@ struct LoadPoint {
   double released = 0.0;     // energy released in that jump (Pi_int + Pi_c before minus after, at fixed load) [nN nm]
 };
 
-// The jump past an instability at fixed load: proximal-point (damped) iterations
-//   x_k+1 = argmin Pi(x) + eta_k / 2 |x - x_k|^2,   eta_k decreasing,
-// each a Newton solve with the tangent K + eta I, descend the energy from the last stable state to a stable state
-// on the far side of the snap, where the undamped Newton then converges. It acts like viscous dissipation: the
-// energy released in the jump is reported.
+// The jump past an instability at fixed load: the total potential energy Pi = Pi_int + Pi_c is minimized from the
+// last stable state, with the load held, by Newton steps on a shifted tangent K + eta I (eta raised until the
+// LDL^T factorization shows no negative pivot, lowered again after good steps) and a line search on Pi that also
+// expands the step (negative curvature means going further lowers Pi more). It ends on a stable state on the far
+// side of the snap, confirmed by plain Newton, like a quasi-static snap with viscous dissipation: the energy
+// released in the jump is reported.
 struct JumpParameters {
-  double initial_damping = 1.0;   // eta_0 over the mean |diagonal| of the tangent
-  double reduction = 0.3;         // eta factor after a stage that converged
-  int maximum_stages = 60;
+  int maximum_iterations = 500;
+  double shift_growth = 4.0;      // eta factor while the shifted tangent is indefinite
 };
 
 // Arc-length continuation (LOCA) in the controlled master, used to go round folds of the load path.
@@ -112,6 +112,10 @@ public:
   // The detachment test that ends a path cleanly.
   void set_detachment_test(std::function<bool(const LoadPoint&)> test) { detachment_test_ = std::move(test); }
   bool detached() const { return detached_; }
+
+  // Starts the path from a converged state read from a checkpoint; `point` carries its history (step number,
+  // external work so far); reactions and energies are recomputed.
+  void restart(const Vector& x, const LoadPoint& point);
 
   // Accepts a converged state found outside `advance` (continuation, restart): it becomes the new last point.
   void accept(const Vector& x, int iterations, int negative_pivots, const Callback& on_point);

@@ -576,7 +576,7 @@ void DiscreteSystem::set_displacements(Vector& x, const std::vector<double>& u) 
 namespace {
 
 // Displacements of every node of the space (N x 3), complete on every rank.
-std::vector<double> space_displacements(const DiscreteSystem& system, const Vector& x, const NodeSpace& space,
+std::vector<double> all_displacements(const DiscreteSystem& system, const Vector& x, const NodeSpace& space,
                                         const DofLayout& layout, const std::array<double, 3>& centre,
                                         const RigidFaceDirections& directions, const Teuchos::Comm<int>& comm)
 {
@@ -613,15 +613,36 @@ std::vector<double> space_displacements(const DiscreteSystem& system, const Vect
 std::vector<double> DiscreteSystem::node_displacements(const Vector& x) const
 {
   const auto& impl = *implementation_;
-  auto all = space_displacements(*this, x, impl.space, impl.layout, impl.face_centre, impl.directions, *impl.comm);
+  auto all = space_displacements(x);
   all.resize(3 * impl.space.mesh_nodes);
   return all;
+}
+
+std::vector<double> DiscreteSystem::space_displacements(const Vector& x) const
+{
+  const auto& impl = *implementation_;
+  return all_displacements(*this, x, impl.space, impl.layout, impl.face_centre, impl.directions, *impl.comm);
+}
+
+void DiscreteSystem::set_space_displacements(Vector& x, const std::vector<double>& u) const
+{
+  const auto& impl = *implementation_;
+  if (u.size() != 3 * static_cast<std::size_t>(impl.space.node_count()))
+    throw std::runtime_error("displacements for " + std::to_string(u.size() / 3) + " nodes given, the system has " +
+                             std::to_string(impl.space.node_count()));
+  const auto map = x.getMap();
+  auto values = x.getDataNonConst(0);
+  for (std::int64_t n = 0; n < impl.space.node_count(); ++n)
+    for (int i = 0; i < 3; ++i) {
+      const auto id = impl.layout.node_dofs[n][i];
+      if (id >= 0 && map->isNodeGlobalElement(id)) values[map->getLocalElement(id)] = u[3 * n + i];
+    }
 }
 
 std::vector<double> DiscreteSystem::element_cauchy_trace(const Vector& x) const
 {
   const auto& impl = *implementation_;
-  const auto u = space_displacements(*this, x, impl.space, impl.layout, impl.face_centre, impl.directions, *impl.comm);
+  const auto u = space_displacements(x);
   const auto law = laws::NeoHookean::from_young(impl.solid.young, impl.solid.poisson);
   std::vector<double> local(impl.mesh.element_count(), 0.0), global(local.size(), 0.0);
   auto trace = [&](const auto& nodes, auto shape, int order) {

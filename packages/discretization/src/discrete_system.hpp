@@ -95,6 +95,10 @@ public:
   // Nodal displacements (N x 3, row-major, every node of the mesh including fixed and rigid ones) and the
   // element field tr(sigma) [GPa], both complete on every rank (for output and diagnostics).
   std::vector<double> node_displacements(const Vector& x) const;
+  // The same over every node of the node space (mesh and enrichment nodes): what a checkpoint stores, and its
+  // inverse (the masters are set separately).
+  std::vector<double> space_displacements(const Vector& x) const;
+  void set_space_displacements(Vector& x, const std::vector<double>& u) const;
   std::vector<double> element_cauchy_trace(const Vector& x) const;
 
 private:

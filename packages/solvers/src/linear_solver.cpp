@@ -32,6 +32,12 @@ void LinearSolverParameters::declare(Teuchos::ParameterList& list)
                           Range::closed(1, 100000));
   parameters::declare_int(list, "ILU fill level", 1, "level of fill of ILU(k) (gmres-ilu)", Range::closed(0, 8));
   MumpsParameters::declare(parameters::declare_sublist(list, "MUMPS", "direct solver options"));
+  parameters::declare_int(list, "lag", 0,
+                          "mumps: Newton tangents one factorization may serve as preconditioner (0: refactor always)",
+                          Range::closed(0, 1000));
+  parameters::declare_int(list, "lag applications", 8,
+                          "mumps: refactor once the solves of one tangent needed more preconditioner applications",
+                          Range::closed(1, 1000));
 }
 
 LinearSolverParameters LinearSolverParameters::from(const Teuchos::ParameterList& list)
@@ -42,6 +48,8 @@ LinearSolverParameters LinearSolverParameters::from(const Teuchos::ParameterList
   p.maximum_iterations = list.get<int>("maximum iterations");
   p.fill_level = list.get<int>("ILU fill level");
   p.mumps = MumpsParameters::from(list.sublist("MUMPS"));
+  p.lag = list.get<int>("lag");
+  p.lag_applications = list.get<int>("lag applications");
   return p;
 }
 
@@ -52,8 +60,9 @@ using ThyraOperator = Thyra::TpetraLinearOp<double, LocalOrdinal, GlobalOrdinal,
 // MUMPS as a Thyra preconditioner: A^-1 itself. Keeps one MumpsSolver (and its symbolic analysis) per map.
 class MumpsPreconditionerFactory : public Thyra::PreconditionerFactoryBase<double> {
 public:
-  MumpsPreconditionerFactory(MumpsParameters parameters, std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver)
-      : parameters_(parameters), solver_(std::move(solver))
+  MumpsPreconditionerFactory(MumpsParameters parameters, int lag, int lag_applications,
+                             std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver)
+      : parameters_(parameters), lag_(lag), lag_applications_(lag_applications), solver_(std::move(solver))
   {
   }
 
@@ -76,7 +85,19 @@ public:
     auto& solver = *solver_;
     if (solver.is_null() || !solver->getDomainMap()->isSameAs(*matrix->getRowMap()))
       solver = Teuchos::rcp(new MumpsSolver(matrix->getRowMap(), parameters_));
-    solver->factor(*matrix);
+    // Lagging: keep the factors while they still precondition well (decided from how many applications the
+    // solves of the previous tangent needed; the same counts on every rank, so the decision is collective).
+    const auto& statistics = solver->statistics();
+    const bool keep = lag_ > 0 && statistics.factorizations > 0 && served_ < lag_ &&
+                      statistics.applications_since_factor - applications_at_init_ <= lag_applications_;
+    if (keep) {
+      ++served_;
+      solver->count_reuse();
+    } else {
+      solver->factor(*matrix);
+      served_ = 0;
+    }
+    applications_at_init_ = solver->statistics().applications_since_factor;
     auto& target = dynamic_cast<Thyra::DefaultPreconditioner<double>&>(*preconditioner);
     const auto space = Thyra::tpetraVectorSpace<double>(matrix->getRowMap());
     const Teuchos::RCP<const Thyra::LinearOpBase<double>> inverse =
@@ -115,23 +136,27 @@ private:
   }
 
   MumpsParameters parameters_;
+  int lag_ = 0, lag_applications_ = 8;
   std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver_;
   Teuchos::RCP<Teuchos::ParameterList> list_;
+  mutable int served_ = 0, applications_at_init_ = 0;
 };
 
 class MumpsFactoryCreator : public Teuchos::AbstractFactory<Thyra::PreconditionerFactoryBase<double>> {
 public:
-  MumpsFactoryCreator(MumpsParameters parameters, std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver)
-      : parameters_(parameters), solver_(std::move(solver))
+  MumpsFactoryCreator(MumpsParameters parameters, int lag, int lag_applications,
+                      std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver)
+      : parameters_(parameters), lag_(lag), lag_applications_(lag_applications), solver_(std::move(solver))
   {
   }
   Teuchos::RCP<Thyra::PreconditionerFactoryBase<double>> create() const override
   {
-    return Teuchos::rcp(new MumpsPreconditionerFactory(parameters_, solver_));
+    return Teuchos::rcp(new MumpsPreconditionerFactory(parameters_, lag_, lag_applications_, solver_));
   }
 
 private:
   MumpsParameters parameters_;
+  int lag_, lag_applications_;
   std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver_;
 };
 
@@ -144,8 +169,9 @@ Teuchos::RCP<Teuchos::ParameterList> stratimikos_list(const LinearSolverParamete
   auto& gmres = belos.sublist("Solver Types").sublist("Pseudo Block GMRES");
   gmres.set("Convergence Tolerance", p.tolerance);
   if (p.type == "mumps") {
-    gmres.set("Maximum Iterations", 10);   // an exact inverse: one iteration, a few more refine
-    gmres.set("Num Blocks", 10);
+    // An exact inverse needs one iteration (a few more refine); a lagged factorization a few more.
+    gmres.set("Maximum Iterations", p.lag > 0 ? 60 : 10);
+    gmres.set("Num Blocks", p.lag > 0 ? 60 : 10);
     list->set("Preconditioner Type", "MUMPS");
   } else {
     gmres.set("Maximum Iterations", p.maximum_iterations);
@@ -173,8 +199,9 @@ LinearSolverFactory::LinearSolverFactory(const LinearSolverParameters& parameter
   auto& impl = *implementation_;
   impl.parameters = parameters;
   Stratimikos::DefaultLinearSolverBuilder builder;
-  builder.setPreconditioningStrategyFactory(Teuchos::rcp(new MumpsFactoryCreator(parameters.mumps, impl.mumps)),
-                                            "MUMPS");
+  builder.setPreconditioningStrategyFactory(
+      Teuchos::rcp(new MumpsFactoryCreator(parameters.mumps, parameters.lag, parameters.lag_applications, impl.mumps)),
+      "MUMPS");
   using Ifpack2Factory = Thyra::Ifpack2PreconditionerFactory<discretization::CrsMatrix>;
   builder.setPreconditioningStrategyFactory(
       Teuchos::abstractFactoryStd<Thyra::PreconditionerFactoryBase<double>, Ifpack2Factory>(), "Ifpack2");

@@ -3,6 +3,10 @@
 //
 //   mumps      MUMPS LDL^T (or LU) direct solve, wrapped as an exact preconditioner of Belos GMRES (which then
 //              converges in one iteration and refines the direct solution); correct on any number of ranks.
+//              With `lag` > 0 a factorization is kept as the preconditioner of the following Newton tangents (GMRES
+//              then needs a few iterations instead of one) until the solves it serves take more than
+//              `lag applications` preconditioner applications, or `lag` tangents have passed: the Newton
+//              directions stay exact (GMRES converges to the tolerance), only the factorizations are saved.
 //   gmres-ilu  Belos GMRES with Ifpack2 ILU(k) of each rank's rows (block Jacobi across ranks).
 //
 // The MUMPS factorization object lives as long as the factory, so its symbolic analysis is reused by every
@@ -23,6 +27,8 @@ struct LinearSolverParameters {
   int maximum_iterations = 500; // Krylov iterations (gmres-ilu)
   int fill_level = 1;           // ILU(k) level of fill (gmres-ilu)
   MumpsParameters mumps;
+  int lag = 0;                  // tangents a MUMPS factorization may serve as preconditioner (0: refactor always)
+  int lag_applications = 8;     // refactor once a tangent's solves needed more applications than this
 
   static void declare(Teuchos::ParameterList& list);
   static LinearSolverParameters from(const Teuchos::ParameterList& list);

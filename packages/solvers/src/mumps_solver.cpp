@@ -183,6 +183,7 @@ struct MumpsSolver::Implementation {
     }
     if (infog(id, 1) < 0) throw std::runtime_error("MUMPS factorization failed: " + describe_error(id));
     ++statistics.factorizations;
+    statistics.applications_since_factor = 0;
     statistics.factorization_seconds += seconds_since(start);
     statistics.negative_pivots = parameters.symmetric ? infog(id, 12) : -1;
     statistics.null_pivots = infog(id, 28);
@@ -220,6 +221,7 @@ struct MumpsSolver::Implementation {
     solution.doExport(root, *to_root, Tpetra::INSERT);
     Y.update(alpha, solution, beta);
     ++statistics.solves;
+    ++statistics.applications_since_factor;
     statistics.solve_seconds += seconds_since(start);
   }
 };
@@ -243,5 +245,6 @@ void MumpsSolver::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp m
 Teuchos::RCP<const Map> MumpsSolver::getDomainMap() const { return implementation_->map; }
 Teuchos::RCP<const Map> MumpsSolver::getRangeMap() const { return implementation_->map; }
 const MumpsStatistics& MumpsSolver::statistics() const { return implementation_->statistics; }
+void MumpsSolver::count_reuse() { ++implementation_->statistics.reused; }
 
 }  // namespace spatula::solvers

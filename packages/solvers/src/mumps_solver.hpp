@@ -34,6 +34,8 @@ struct MumpsStatistics {
   int negative_pivots = -1;   // from the last factorization (symmetric mode), -1 if unknown
   int workspace_increases = 0;   // factorizations repeated with a larger ICNTL(14)
   int null_pivots = 0;          // of the last factorization (ICNTL(24) null pivot detection)
+  int applications_since_factor = 0;   // solves done with the current factors (lagging decisions)
+  int reused = 0;               // times a stale factorization was kept as preconditioner
   double analysis_seconds = 0.0, factorization_seconds = 0.0, solve_seconds = 0.0;
 };
 
@@ -53,6 +55,7 @@ public:
   Teuchos::RCP<const Map> getRangeMap() const override;
 
   const MumpsStatistics& statistics() const;
+  void count_reuse();   // a stale factorization kept as preconditioner (see LinearSolverParameters::lag)
 
 private:
   struct Implementation;

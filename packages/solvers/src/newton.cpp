@@ -40,7 +40,8 @@ void NewtonParameters::declare(Teuchos::ParameterList& list)
                              {0.0, 1.0, false, true});
   parameters::declare_double(list, "absolute tolerance", 1e-9, "|f|_2 [nN]", Range::non_negative());
   parameters::declare_double(list, "update tolerance", 1e-6, "|dx|_inf [nm, rad]", Range::positive());
-  parameters::declare_int(list, "maximum iterations", 25, "Newton iterations per load step", Range::closed(1, 500));
+  parameters::declare_int(list, "maximum iterations", 12, "Newton iterations per load step (fail fast, cut the step)",
+                          Range::closed(1, 500));
   parameters::declare_string(list, "line search", "backtrack", "step length control", line_search_names());
 }
 

@@ -16,7 +16,7 @@ struct NewtonParameters {
   double relative_tolerance = 1e-9;
   double absolute_tolerance = 1e-9;    // [nN]
   double update_tolerance = 1e-6;      // [nm] (and rad for the rotation)
-  int maximum_iterations = 25;
+  int maximum_iterations = 12;
   std::string line_search = "backtrack";   // a name in line_search_names()
 
   static void declare(Teuchos::ParameterList& list);
