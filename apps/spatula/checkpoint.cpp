@@ -21,7 +21,7 @@ std::vector<double> signature(const discretization::DiscreteSystem& system, cons
 
 std::vector<double> history(const analysis::LoadPoint& p)
 {
-  return {static_cast<double>(p.step), p.rotation, p.lift, p.slide, p.external_work};
+  return {static_cast<double>(p.step), p.rotation, p.lift, p.slide, p.external_work, p.dissipated};
 }
 
 }  // namespace
@@ -75,6 +75,7 @@ analysis::LoadPoint read_checkpoint(const std::string& file, double theta_y_degr
   point.lift = h[2];
   point.slide = h[3];
   point.external_work = h[4];
+  point.dissipated = h.size() > 5 ? h[5] : 0.0;
   return point;
 }
 

@@ -26,14 +26,15 @@ public:
   {
     out_ << "step,stage,theta_y_deg,u_z_nm,M_y_nNnm,M_y_per_ER0^3,P_z_nN,P_z_per_ER0^2,Pi_int_1e-18J,"
             "Pi_ext_1e-18J,Pi_c_1e-18J,Pi_sa_1e-18J,Pi_ext_per_Pi_c0,Pi_int_per_Pi_c0,Pi_sa_per_Pi_c0,"
-            "balance_error_per_Pi_c0,contact_faces_active,contact_faces_skipped,newton_iterations,negative_pivots,"
-            "wall_s\n";
+            "dissipated_per_Pi_c0,balance_error_per_Pi_c0,after_jump,contact_faces_active,contact_faces_skipped,"
+            "newton_iterations,negative_pivots,wall_s\n";
     out_ << std::setprecision(10);
   }
   double stored_adhesion(const analysis::LoadPoint& p) const { return 2 * (p.contact_energy - initial_contact_); }
+  // |Pi_ext - Pi_int - Pi_sa - D| / Pi_c0 with D the energy the jumps past instabilities released (dissipated).
   double balance_error(const analysis::LoadPoint& p) const
   {
-    return std::abs(2 * p.external_work - 2 * p.internal_energy - stored_adhesion(p)) / reference_;
+    return std::abs(2 * p.external_work - 2 * p.internal_energy - stored_adhesion(p) - 2 * p.dissipated) / reference_;
   }
   void write(const analysis::LoadPoint& p, const char* stage, double theta_s)
   {
@@ -42,7 +43,8 @@ public:
          << 2 * p.moment << "," << 2 * p.moment / young_ << "," << 2 * p.force << "," << 2 * p.force / young_ << ","
          << 2 * p.internal_energy << "," << 2 * p.external_work << "," << 2 * p.contact_energy << "," << sa << ","
          << 2 * p.external_work / reference_ << "," << 2 * p.internal_energy / reference_ << "," << sa / reference_
-         << "," << balance_error(p) << "," << p.active_faces << "," << p.skipped_faces << ","
+         << "," << 2 * p.dissipated / reference_ << "," << balance_error(p) << "," << (p.after_jump ? 1 : 0) << ","
+         << p.active_faces << "," << p.skipped_faces << ","
          << p.newton_iterations << "," << p.negative_pivots << "," << p.seconds << "\n";
     out_.flush();
   }
@@ -121,6 +123,22 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
       write_fields(x, std::string(stage) == "rotation" ? (theta_s + p.rotation) / degree : p.lift);
   };
 
+  // Detachment ends a path cleanly: the moment (rotation) or the pull (lift) has collapsed to under 1 % of its peak
+  // with most of the pad released.
+  const double initial_contact = path.last().contact_energy;
+  auto released_fraction = [&](const analysis::LoadPoint& p) {
+    return 2.0 * (p.contact_energy - initial_contact) / reference_energy;
+  };
+  double peak_moment = 0.0, peak_force = 0.0;
+  if (options.contact)
+    path.set_detachment_test([&](const analysis::LoadPoint& p) {
+      peak_moment = std::max(peak_moment, p.moment);
+      peak_force = std::max(peak_force, p.force);
+      const bool collapsed = std::string(stage) == "rotation" ? p.moment < 0.01 * peak_moment
+                                                               : p.force < 0.01 * peak_force;
+      return collapsed && released_fraction(p) > 0.5;
+    });
+
   const auto& loading = scene.loading;
   if (!loading.restart_file.empty()) {
     auto x = system->create_vector();
@@ -156,6 +174,15 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
     stage = "lift";
     failure = path.advance(Master::lift, loading.final_lift, LoadPath::spatula_control(Master::lift, false),
                            loading.lift_steps, 1.0, on_point);
+  }
+  // No equilibrium beyond a state where most of the pad has let go: that is the detachment.
+  if (failure && options.contact && released_fraction(path.last()) > 0.5) {
+    if (root)
+      out << "detachment: no equilibrium beyond " << stage << " = " << failure->load << " (" << failure->reason
+          << ")\n";
+    failure.reset();
+  } else if (path.detached() && root) {
+    out << "detachment: the " << (std::string(stage) == "rotation" ? "moment" : "pull") << " has collapsed\n";
   }
   const auto& last = path.last();
   if (scene.output.field_interval == 0 || last.step % scene.output.field_interval != 0)

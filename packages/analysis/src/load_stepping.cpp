@@ -81,6 +81,7 @@ LoadPoint LoadPath::measure(int iterations, int negative_pivots)
   point.seconds = now() - started_;
   if (!points_.empty()) {
     const auto& last = points_.back();
+    point.dissipated = last.dissipated;
     point.external_work = last.external_work + 0.5 * (last.moment + point.moment) * (point.rotation - last.rotation) +
                           0.5 * (last.force + point.force) * (point.lift - last.lift) +
                           0.5 * (last.slide_force + point.slide_force) * (point.slide - last.slide);
@@ -191,6 +192,7 @@ void LoadPath::restart(const Vector& x, const LoadPoint& point)
   auto measured = measure(point.newton_iterations, point.negative_pivots);
   measured.step = point.step;
   measured.external_work = point.external_work;
+  measured.dissipated = point.dissipated;
   points_.push_back(measured);
 }
 
@@ -234,7 +236,9 @@ std::optional<Failure> LoadPath::jump(Master controlled, double value, const Cal
       continue;
     }
     const double residual = f->norm2();
-    if (eta == 0.0 && residual < 1e-6) break;   // near a stable minimum: plain Newton finishes below
+    // Near a stable minimum (positive definite tangent, small gradient): plain Newton finishes below. The energy
+    // alone cannot resolve the last digits (its changes fall below its rounding), the gradient can.
+    if (eta == 0.0 && residual < 1e-3) break;
     mumps.apply(*f, *direction);
     direction->scale(-1.0);
     const double slope = f->dot(*direction);
@@ -258,11 +262,15 @@ std::optional<Failure> LoadPath::jump(Master controlled, double value, const Cal
       if (best_step > 0.0) break;   // the expansion went too far: keep the best
       step *= 0.5;
     }
+    if (best_step == 0.0 && eta == 0.0) break;   // a plain Newton step and no measurable decrease: let Newton finish
     if (best_step == 0.0) {   // no decrease along this direction: stiffen the shift
       eta = eta == 0.0 ? 1e-6 * scale : jump_.shift_growth * eta;
       continue;
     }
     x->update(best_step, *direction, 1.0);
+    if (log_ && tables_)
+      *log_ << std::setprecision(10) << "    descent " << iteration << ": Pi " << 2 * energy << " -> " << 2 * best_energy << ", |f| " << residual
+            << ", step " << best_step << ", eta " << eta << "\n";
     eta = best_step >= 1.0 ? 0.25 * eta : 2.0 * eta;
     if (eta < 1e-9 * scale) eta = 0.0;
   }
@@ -275,6 +283,7 @@ std::optional<Failure> LoadPath::jump(Master controlled, double value, const Cal
       after.after_jump = true;
       after.released = (before.internal_energy + before.contact_energy) - (after.internal_energy + after.contact_energy) +
                        (after.external_work - before.external_work);
+      after.dissipated += after.released;
       if (log_)
         *log_ << "  jumped in " << newton_total << " iterations (energy descent, then Newton), released "
               << 2.0 * after.released << " nN nm (full spatula)\n";

@@ -44,6 +44,7 @@ struct LoadPoint {
   double seconds = 0.0;      // wall time since the run began
   bool after_jump = false;   // the first state on the far side of an instability
   double released = 0.0;     // energy released in that jump (Pi_int + Pi_c before minus after, at fixed load) [nN nm]
+  double dissipated = 0.0;   // energy released in all jumps so far [nN nm]
 };
 
 // The jump past an instability at fixed load: the total potential energy Pi = Pi_int + Pi_c is minimized from the
