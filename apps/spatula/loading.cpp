@@ -30,6 +30,8 @@ void LoadingParameters::declare(Teuchos::ParameterList& loading)
                              Range::closed(-180.0, 180.0));
   parameters::declare_double(loading, "final lift", 100.0, "u_z of the end face centre at the end of a lift [nm]",
                              Range::closed(-1e4, 1e4));
+  parameters::declare_bool(loading, "final lift relative", false,
+                           "count 'final lift' from the u_z where the lift starts, not from the undeformed state");
   parameters::declare_bool(loading, "free lift during rotation", true,
                            "zero net Z force on the end face while rotating (false: u_z held at 0)");
   parameters::declare_bool(loading, "hold contact surface", false,
@@ -65,6 +67,7 @@ LoadingParameters LoadingParameters::from(const Teuchos::ParameterList& loading)
   p.theta_y = loading.get<double>("theta_y");
   p.final_lift = loading.get<double>("final lift");
   p.free_lift = loading.get<bool>("free lift during rotation");
+  p.lift_relative = loading.get<bool>("final lift relative");
   p.hold_contact_surface = loading.get<bool>("hold contact surface");
   p.rotation_steps = analysis::StepParameters::from(loading.sublist("Rotation Steps"), "Loading/Rotation Steps");
   p.lift_steps = analysis::StepParameters::from(loading.sublist("Lift Steps"), "Loading/Lift Steps");

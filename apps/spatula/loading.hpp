@@ -14,6 +14,7 @@ struct LoadingParameters {
   std::string type = "none";
   double theta_y = 30.0;          // rotation: final inclination; lift: the inclination held [deg]
   double final_lift = 100.0;      // lift: u_z of the face centre at the end, from the undeformed state [nm]
+  bool lift_relative = false;     // final lift counted from where the lift starts (a pre-rotated state)
   bool free_lift = true;          // while rotating: zero net Z force on the face (else u_z held at 0)
   bool hold_contact_surface = false;   // the pad's bottom held at Z = 0 (a check without adhesion)
   analysis::StepParameters rotation_steps, lift_steps;

@@ -21,8 +21,12 @@ constexpr double degree = pi / 180.0;
 // Pi_c0 = A_c w_adh; the balance error |Pi_ext - Pi_int - Pi_sa| / Pi_c0 (Pi_c0 = 1 without adhesion).
 class CurveWriter {
 public:
-  CurveWriter(const std::string& file, double young, double reference_energy, double initial_contact_energy)
-      : out_(file), young_(young), reference_(reference_energy), initial_contact_(initial_contact_energy)
+  // Energies are counted from a baseline state: the undeformed spatula, or (rough substrates) the pad pressed
+  // onto the substrate, whose internal and adhesion energies are given here.
+  CurveWriter(const std::string& file, double young, double reference_energy, double initial_internal_energy,
+              double initial_contact_energy)
+      : out_(file), young_(young), reference_(reference_energy), initial_internal_(initial_internal_energy),
+        initial_contact_(initial_contact_energy)
   {
     out_ << "step,stage,theta_y_deg,u_z_nm,M_y_nNnm,M_y_per_ER0^3,P_z_nN,P_z_per_ER0^2,Pi_int_1e-18J,"
             "Pi_ext_1e-18J,Pi_c_1e-18J,Pi_sa_1e-18J,Pi_ext_per_Pi_c0,Pi_int_per_Pi_c0,Pi_sa_per_Pi_c0,"
@@ -31,18 +35,19 @@ public:
     out_ << std::setprecision(10);
   }
   double stored_adhesion(const analysis::LoadPoint& p) const { return 2 * (p.contact_energy - initial_contact_); }
+  double internal(const analysis::LoadPoint& p) const { return 2 * (p.internal_energy - initial_internal_); }
   // |Pi_ext - Pi_int - Pi_sa - D| / Pi_c0 with D the energy the jumps past instabilities released (dissipated).
   double balance_error(const analysis::LoadPoint& p) const
   {
-    return std::abs(2 * p.external_work - 2 * p.internal_energy - stored_adhesion(p) - 2 * p.dissipated) / reference_;
+    return std::abs(2 * p.external_work - internal(p) - stored_adhesion(p) - 2 * p.dissipated) / reference_;
   }
   void write(const analysis::LoadPoint& p, const char* stage, double theta_s)
   {
     const double sa = stored_adhesion(p);
     out_ << p.step << "," << stage << "," << (theta_s + p.rotation) / degree << "," << p.lift << ","
          << 2 * p.moment << "," << 2 * p.moment / young_ << "," << 2 * p.force << "," << 2 * p.force / young_ << ","
-         << 2 * p.internal_energy << "," << 2 * p.external_work << "," << 2 * p.contact_energy << "," << sa << ","
-         << 2 * p.external_work / reference_ << "," << 2 * p.internal_energy / reference_ << "," << sa / reference_
+         << internal(p) << "," << 2 * p.external_work << "," << 2 * p.contact_energy << "," << sa << ","
+         << 2 * p.external_work / reference_ << "," << internal(p) / reference_ << "," << sa / reference_
          << "," << 2 * p.dissipated / reference_ << "," << balance_error(p) << "," << (p.after_jump ? 1 : 0) << ","
          << p.active_faces << "," << p.skipped_faces << ","
          << p.newton_iterations << "," << p.negative_pivots << "," << p.seconds << "\n";
@@ -51,7 +56,7 @@ public:
 
 private:
   std::ofstream out_;
-  double young_, reference_, initial_contact_;
+  double young_, reference_, initial_internal_, initial_contact_;
 };
 
 }  // namespace
@@ -90,9 +95,6 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
         << "  contact area A_c = " << 2.0 * system->contact_area() << " nm^2, Pi_c0 = A_c w_adh = " << reference_energy
         << " nN nm = " << reference_energy / young << " E R0^3\n";
   std::unique_ptr<CurveWriter> curve;
-  if (root)
-    curve = std::make_unique<CurveWriter>(directory->file("curve.csv"), young, reference_energy,
-                                          path.last().contact_energy);
   const char* stage = "rotation";
   auto write_fields = [&](const discretization::Vector& x, double time) {
     io::FieldState state;
@@ -109,7 +111,7 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
       out << "step " << std::setw(4) << p.step << "  " << stage << "  theta_y " << std::fixed << std::setprecision(3)
           << std::setw(8) << (theta_s + p.rotation) / degree << " deg  u_z " << std::setw(9) << p.lift
           << " nm  M_y " << std::setprecision(4) << std::setw(10) << 2 * p.moment << " nN nm  P_z " << std::setw(9)
-          << 2 * p.force << " nN  Pi_int " << std::setw(9) << 2 * p.internal_energy;
+          << 2 * p.force << " nN  Pi_int " << std::setw(9) << curve->internal(p);
       if (options.contact)
         out << "  Pi_sa/Pi_c0 " << std::setprecision(4) << curve->stored_adhesion(p) / reference_energy
             << "  balance " << std::scientific << std::setprecision(1) << curve->balance_error(p) << std::fixed
@@ -125,7 +127,7 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
 
   // Detachment ends a path cleanly: the moment (rotation) or the pull (lift) has collapsed to under 1 % of its peak
   // with most of the pad released.
-  const double initial_contact = path.last().contact_energy;
+  double initial_contact = path.last().contact_energy, initial_internal = 0.0;
   auto released_fraction = [&](const analysis::LoadPoint& p) {
     return 2.0 * (p.contact_energy - initial_contact) / reference_energy;
   };
@@ -139,7 +141,33 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
       return collapsed && released_fraction(p) > 0.5;
     });
 
+  using analysis::LoadPath;
+  using discretization::Master;
   const auto& loading = scene.loading;
+  // On a rough substrate the pad starts pressed onto it: every node column is shifted down by the depth of the
+  // surface below it (tapering to nothing along the first 100 nm of the shaft), then equilibrium is found.
+  const auto& adhesion = scene.adhesion.settings;
+  if (options.contact && adhesion.substrate == "rough" && adhesion.conform && loading.restart_file.empty()) {
+    std::vector<double> u(3 * mesh.node_count(), 0.0);
+    const double top = adhesion.rough.base + adhesion.rough.z0;
+    for (std::int64_t n = 0; n < mesh.node_count(); ++n) {
+      const auto& X = mesh.coordinates[n];
+      const double weight = std::clamp(1.0 + X[0] / 100.0, 0.0, 1.0);
+      double S, gradient[2], hessian[2][2];
+      adhesion.rough.surface(X[0], X[1], S, gradient, hessian);
+      u[3 * n + 2] = weight * (S - top);
+    }
+    auto guess = system->create_vector();
+    system->set_displacements(*guess, u);
+    const auto failure = path.equilibrate(*guess, LoadPath::spatula_control(Master::rotation, loading.free_lift));
+    if (failure) return failure;
+    if (root) out << "pad pressed onto the rough substrate (z0 = " << adhesion.rough.z0 << " nm): equilibrium found\n";
+    initial_contact = path.last().contact_energy;   // the energies count from this state
+    initial_internal = path.last().internal_energy;
+  }
+  if (root)
+    curve = std::make_unique<CurveWriter>(directory->file("curve.csv"), young, reference_energy, initial_internal,
+                                          initial_contact);
   if (!loading.restart_file.empty()) {
     auto x = system->create_vector();
     const auto history = read_checkpoint(loading.restart_file, loading.restart_theta_y, *system, *x, scene);
@@ -150,8 +178,6 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
   }
   if (root) curve->write(path.last(), stage, theta_s);
   write_fields(path.state(), (theta_s + path.last().rotation) / degree);
-  using analysis::LoadPath;
-  using discretization::Master;
   // The rotation, stopping at every checkpoint inclination on the way.
   std::optional<analysis::Failure> failure;
   std::vector<double> stops;
@@ -172,8 +198,9 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
   }
   if (!failure && !path.detached() && loading.type == "lift") {
     stage = "lift";
-    failure = path.advance(Master::lift, loading.final_lift, LoadPath::spatula_control(Master::lift, false),
-                           loading.lift_steps, 1.0, on_point);
+    const double target = loading.final_lift + (loading.lift_relative ? path.last().lift : 0.0);
+    failure = path.advance(Master::lift, target, LoadPath::spatula_control(Master::lift, false), loading.lift_steps,
+                           1.0, on_point);
   }
   // No equilibrium beyond a state where most of the pad has let go: that is the detachment.
   if (failure && options.contact && released_fraction(path.last()) > 0.5) {

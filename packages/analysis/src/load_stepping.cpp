@@ -9,6 +9,7 @@
 #include <iomanip>
 #include <ostream>
 #include <sstream>
+#include <variant>
 
 namespace spatula::analysis {
 
@@ -183,6 +184,23 @@ void LoadPath::accept(const Vector& x, int iterations, int negative_pivots, cons
   if (on_point) on_point(points_.back(), *x_);
 }
 
+std::optional<Failure> LoadPath::equilibrate(const Vector& guess, discretization::MasterControl control)
+{
+  model_.system().set_control(control);
+  auto x = model_.system().create_vector();
+  x->assign(guess);
+  const auto outcome = descend(*x);   // robust from a far guess: energy descent, then Newton
+  if (const auto* reason = std::get_if<std::string>(&outcome)) {
+    Failure failure;
+    failure.reason = "no equilibrium from the initial guess: " + *reason;
+    return failure;
+  }
+  LoadPoint start;
+  start.newton_iterations = std::get<int>(outcome);
+  restart(*x, start);
+  return std::nullopt;
+}
+
 void LoadPath::restart(const Vector& x, const LoadPoint& point)
 {
   x_->assign(x);
@@ -196,33 +214,25 @@ void LoadPath::restart(const Vector& x, const LoadPoint& point)
   points_.push_back(measured);
 }
 
-std::optional<Failure> LoadPath::jump(Master controlled, double value, const Callback& on_point)
+// Minimizes Pi at the current load from x (shifted Newton + expanding line search on Pi), then confirms with plain
+// Newton. Returns the iterations used, or the reason it failed.
+std::variant<int, std::string> LoadPath::descend(Vector& x)
 {
-  Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: jump past instability"));
   auto& system = model_.system();
-  const auto before = points_.back();
-  auto x = system.create_vector(), f = system.create_vector(), direction = system.create_vector(),
-       trial = system.create_vector();
-  x->assign(*x_);
-  system.set_master(*x, controlled, value);
+  auto f = system.create_vector(), direction = system.create_vector(), trial = system.create_vector();
   solvers::MumpsSolver mumps(system.owned_map(), solvers::MumpsParameters{});
   auto energy_at = [&](const Vector& state, bool& admissible) {
     const auto evaluation = system.evaluate(state, nullptr, false);
     admissible = evaluation.admissible;
     return evaluation.internal_energy + evaluation.contact_energy;
   };
-
   double eta = 0.0, scale = 0.0;
   int iteration = 0;
-  std::string reason = "no stable state within " + std::to_string(jump_.maximum_iterations) + " iterations";
   for (; iteration < jump_.maximum_iterations; ++iteration) {
-    system.set_damping(eta, x);   // anchored at x: a pure shift of the tangent, f unchanged
-    const auto evaluation = system.evaluate(*x, f.get(), true);
+    system.set_damping(eta, Teuchos::rcpFromRef(x));   // anchored at x: a pure shift of the tangent, f unchanged
+    const auto evaluation = system.evaluate(x, f.get(), true);
     system.set_damping(0.0, Teuchos::null);
-    if (!evaluation.admissible) {
-      reason = "an element inverted during the jump";
-      break;
-    }
+    if (!evaluation.admissible) return std::string("an element inverted during the energy descent");
     if (scale == 0.0) scale = system.mean_diagonal();
     int negative = 0;
     try {
@@ -247,7 +257,7 @@ std::optional<Failure> LoadPath::jump(Master controlled, double value, const Cal
     // Line search on Pi with expansion.
     double step = 1.0, best_step = 0.0, best_energy = energy;
     for (int trial_count = 0; trial_count < 30; ++trial_count) {
-      trial->update(1.0, *x, step, *direction, 0.0);
+      trial->update(1.0, x, step, *direction, 0.0);
       const double value_at = energy_at(*trial, admissible);
       const bool sufficient = admissible && value_at <= energy + 1e-4 * step * slope;
       if (sufficient && value_at < best_energy) {
@@ -267,37 +277,46 @@ std::optional<Failure> LoadPath::jump(Master controlled, double value, const Cal
       eta = eta == 0.0 ? 1e-6 * scale : jump_.shift_growth * eta;
       continue;
     }
-    x->update(best_step, *direction, 1.0);
-    if (log_ && tables_)
-      *log_ << std::setprecision(10) << "    descent " << iteration << ": Pi " << 2 * energy << " -> " << 2 * best_energy << ", |f| " << residual
-            << ", step " << best_step << ", eta " << eta << "\n";
+    x.update(best_step, *direction, 1.0);
     eta = best_step >= 1.0 ? 0.25 * eta : 2.0 * eta;
     if (eta < 1e-9 * scale) eta = 0.0;
   }
-  if (iteration < jump_.maximum_iterations) {
-    const auto plain = newton_.solve(*x, nullptr);
-    if (plain.converged) {
-      const int newton_total = iteration + (plain.iterations.empty() ? 0 : plain.iterations.back().iteration);
-      accept(*x, newton_total, plain.iterations.empty() ? -1 : plain.iterations.back().negative_pivots, {});
-      auto& after = points_.back();
-      after.after_jump = true;
-      after.released = (before.internal_energy + before.contact_energy) - (after.internal_energy + after.contact_energy) +
-                       (after.external_work - before.external_work);
-      after.dissipated += after.released;
-      if (log_)
-        *log_ << "  jumped in " << newton_total << " iterations (energy descent, then Newton), released "
-              << 2.0 * after.released << " nN nm (full spatula)\n";
-      if (detachment_test_ && detachment_test_(after)) detached_ = true;
-      if (on_point) on_point(after, *x_);
-      return std::nullopt;
-    }
-    reason = "Newton did not confirm the state the energy descent reached (" + plain.failure + ")";
+  if (iteration >= jump_.maximum_iterations)
+    return "no stable state within " + std::to_string(jump_.maximum_iterations) + " iterations";
+  const auto plain = newton_.solve(x, nullptr);
+  if (!plain.converged) return "Newton did not confirm the state the energy descent reached (" + plain.failure + ")";
+  return iteration + (plain.iterations.empty() ? 0 : plain.iterations.back().iteration);
+}
+
+std::optional<Failure> LoadPath::jump(Master controlled, double value, const Callback& on_point)
+{
+  Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: jump past instability"));
+  auto& system = model_.system();
+  const auto before = points_.back();
+  auto x = system.create_vector();
+  x->assign(*x_);
+  system.set_master(*x, controlled, value);
+  const auto outcome = descend(*x);
+  if (const auto* reason = std::get_if<std::string>(&outcome)) {
+    Failure failure;
+    failure.step = static_cast<int>(points_.size());
+    failure.load = value;
+    failure.reason = "jump past the instability failed: " + *reason;
+    return failure;
   }
-  Failure failure;
-  failure.step = static_cast<int>(points_.size());
-  failure.load = value;
-  failure.reason = "jump past the instability failed after " + std::to_string(iteration) + " iterations: " + reason;
-  return failure;
+  const int iterations = std::get<int>(outcome);
+  accept(*x, iterations, -1, {});
+  auto& after = points_.back();
+  after.after_jump = true;
+  after.released = (before.internal_energy + before.contact_energy) - (after.internal_energy + after.contact_energy) +
+                   (after.external_work - before.external_work);
+  after.dissipated += after.released;
+  if (log_)
+    *log_ << "  jumped in " << iterations << " iterations (energy descent, then Newton), released "
+          << 2.0 * after.released << " nN nm (full spatula)\n";
+  if (detachment_test_ && detachment_test_(after)) detached_ = true;
+  if (on_point) on_point(after, *x_);
+  return std::nullopt;
 }
 
 }  // namespace spatula::analysis

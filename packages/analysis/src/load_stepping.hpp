@@ -9,6 +9,7 @@
 #include <functional>
 #include <iosfwd>
 #include <optional>
+#include <variant>
 #include <string>
 
 namespace spatula::analysis {
@@ -114,6 +115,10 @@ public:
   void set_detachment_test(std::function<bool(const LoadPoint&)> test) { detachment_test_ = std::move(test); }
   bool detached() const { return detached_; }
 
+  // Replaces the current state by `guess` and solves for equilibrium at the current load (e.g. the pad pressed onto
+  // a rough substrate before loading); the result becomes the path's first point (history reset).
+  std::optional<Failure> equilibrate(const Vector& guess, discretization::MasterControl control);
+
   // Starts the path from a converged state read from a checkpoint; `point` carries its history (step number,
   // external work so far); reactions and energies are recomputed.
   void restart(const Vector& x, const LoadPoint& point);
@@ -123,6 +128,7 @@ public:
 
 private:
   LoadPoint measure(int iterations, int negative_pivots);
+  std::variant<int, std::string> descend(Vector& x);
 
   solvers::SpatulaModel& model_;
   const solvers::NewtonSolver& newton_;

@@ -46,6 +46,9 @@ void AdhesionParameters::declare(Teuchos::ParameterList& adhesion)
   parameters::declare_double(rough, "z0", 4.0, "asperity height [nm]", Range::non_negative());
   parameters::declare_double(rough, "h", 20.0, "asperity width [nm]", Range::positive());
   parameters::declare_double(rough, "lambda", 100.0, "grid spacing [nm]", Range::positive());
+  parameters::declare_bool(rough, "conform initially", true,
+                           "start from the pad pressed onto the substrate (each column of nodes shifted so the bottom "
+                           "sits at the equilibrium gap over the surface), then find equilibrium");
 }
 
 AdhesionParameters AdhesionParameters::from(const Teuchos::ParameterList& adhesion, double young)
@@ -78,6 +81,7 @@ AdhesionParameters AdhesionParameters::from(const Teuchos::ParameterList& adhesi
   s.rough.width = rough.get<double>("h");
   s.rough.spacing = rough.get<double>("lambda");
   s.rough.base = -r_eq - s.rough.z0;   // asperity tops at the pad's equilibrium gap
+  s.conform = rough.get<bool>("conform initially");
   if (p.enabled) make_contact_model(s);   // checks the law/substrate combination now, before anything runs
   return p;
 }

@@ -24,6 +24,7 @@ struct AdhesionSettings {
   laws::LennardJones lennard_jones;    // A_H [nN nm], r0, r_reg, r_cut [nm]
   laws::RoughSubstrate rough;          // z0, h, lambda (base set from r_eq: asperity tops at -r_eq)
   double substrate_height = 0.0;       // flat: the plane z = -r_eq, so the undeformed pad is traction-free
+  bool conform = false;                // rough: start from the pad pressed onto the asperities
 
   double gamma_W(double young) const;
   double gamma_L() const { return 1.0 / lennard_jones.r0; }

@@ -1,0 +1,291 @@
+#!/usr/bin/env python3
+"""Runs the paper's studies (the scenes in xml/studies/) and writes their tables and figures.
+
+    scripts/run-study.py <study> [--jobs 2] [--work DIR] [--docs]
+
+studies: table4 (peel by rotation), table6 (pull-off at 45/60/75/90 deg, also Table 5), stiction, gamma-W (Table 7),
+gamma-L (Table 8), rough (Fig. 14), all. Runs use one MPI rank each, `--jobs` of them at once (both cores by default); pull-offs
+wait for the rotation run whose checkpoints they start from. Progress: one line per converged step of every run.
+Results: <work>/<scene>/ per run, <work>/tables/*.csv and *.md, and with --docs docs/validation.md and its PNGs.
+Needs a build (build/apps/spatula/spatula). Runs already complete in <work> are not repeated.
+"""
+import argparse
+import csv
+import math
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+APP = os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula')
+SCENES = os.path.join(ROOT, 'xml', 'studies')
+
+STUDIES = {
+    'table4': ['peel-rotation'],
+    'table6': ['peel-rotation', 'pull-off-45', 'pull-off-60', 'pull-off-75', 'pull-off-90'],
+    'stiction': ['peel-rotation', 'pull-off-60', 'pull-off-60-stiction'],
+    'gamma-W': ['peel-rotation', 'pull-off-60', 'gamma-W-0.667', 'gamma-W-1.5', 'gamma-W-2.25'],
+    'gamma-L': ['peel-rotation', 'pull-off-60', 'gamma-L-0.444', 'gamma-L-0.667', 'gamma-L-1.5'],
+    'rough': ['rough-z0-0', 'rough-z0-4', 'rough-z0-8'],
+}
+STUDIES['all'] = sorted({scene for scenes in STUDIES.values() for scene in scenes},
+                        key=lambda s: (not s.startswith('peel'), s))
+DEPENDS = {f'pull-off-{t}': 'peel-rotation' for t in (45, 60, 75, 90)}
+
+# The paper's values this project may use (MODEL.md section 8); the rest are held out.
+PAPER_TABLE4 = {30: (0.237, 0.222, 0.013), '31-': (0.255, 0.232, 0.021), '31+': (0.255, 0.182, 0.071),
+                60: (0.689, 0.395, 0.291), 90: (1.088, 0.545, 0.540), 120: (1.455, 0.728, 0.724),
+                128: (1.551, 0.738, 0.811)}
+PAPER_TABLE6 = {45: (7.63, 248, 1097), 60: (6.67, 185, 701), 75: (5.59, 125, 422), 90: (4.40, 80, 235)}
+PAPER_TABLE5_START = {45: 0.463, 60: 0.689, 75: 0.897, 90: 1.088}
+
+
+def complete(work, scene):
+    return os.path.exists(os.path.join(work, scene, 'curve.csv'))
+
+
+def run_all(scenes, work, jobs):
+    os.makedirs(work, exist_ok=True)
+    pending = [s for s in scenes if not complete(work, s)]
+    running = {}
+    failed = []
+    seen = {}
+    environment = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
+    while pending or running:
+        for scene in list(pending):
+            if len(running) >= jobs:
+                break
+            dependency = DEPENDS.get(scene)
+            if dependency and not complete(work, dependency):
+                if dependency not in running and dependency not in pending:
+                    print(f'[{scene}] waits for {dependency}, which failed', flush=True)
+                    pending.remove(scene)
+                    failed.append(scene)
+                continue
+            pending.remove(scene)
+            log = open(os.path.join(work, scene + '.log'), 'w')
+            running[scene] = (subprocess.Popen([APP, os.path.join(SCENES, scene + '.xml')], cwd=work, stdout=log,
+                                               stderr=subprocess.STDOUT, env=environment), log, time.time())
+            print(f'[{scene}] started', flush=True)
+        time.sleep(5)
+        for scene, (process, log, started) in list(running.items()):
+            lines = open(os.path.join(work, scene + '.log')).read().splitlines()
+            steps = [l for l in lines if l.startswith('step ') or 'jump' in l or 'detachment' in l]
+            for line in steps[seen.get(scene, 0):]:
+                print(f'[{scene}] {" ".join(line.split())[:170]}', flush=True)
+            seen[scene] = len(steps)
+            if process.poll() is not None:
+                log.close()
+                status = 'done' if process.returncode == 0 else f'failed (exit {process.returncode})'
+                print(f'[{scene}] {status} after {time.time() - started:.0f} s', flush=True)
+                if process.returncode != 0:
+                    failed.append(scene)
+                del running[scene]
+    return failed
+
+
+def read_curve(work, scene):
+    path = os.path.join(work, scene, 'curve.csv')
+    if not os.path.exists(path):
+        path = os.path.join(work, scene + '.incomplete', 'curve.csv')
+    return [{k: (v if k == 'stage' else float(v)) for k, v in row.items()} for row in csv.DictReader(open(path))]
+
+
+def interpolate(rows, key, at, columns):
+    for a, b in zip(rows, rows[1:]):
+        if a[key] <= at <= b[key] and b[key] > a[key]:
+            t = (at - a[key]) / (b[key] - a[key])
+            return {c: a[c] + t * (b[c] - a[c]) for c in columns}
+    return None
+
+
+def table4(work):
+    rows = read_curve(work, 'peel-rotation')
+    columns = ['Pi_ext_per_Pi_c0', 'Pi_int_per_Pi_c0', 'Pi_sa_per_Pi_c0', 'balance_error_per_Pi_c0', 'M_y_nNnm']
+    out = []
+    for theta in (30, 60, 90, 120):
+        values = interpolate(rows, 'theta_y_deg', theta, columns)
+        if values:
+            out.append((str(theta), theta, values, PAPER_TABLE4[theta]))
+    # The first instability: the first jump after which the moment dropped by more than 10 %.
+    for i, row in enumerate(rows):
+        if row['after_jump'] == 1 and row['M_y_nNnm'] < 0.9 * rows[i - 1]['M_y_nNnm']:
+            out.insert(1, ('31- (before the first drop)', rows[i - 1]['theta_y_deg'], rows[i - 1], PAPER_TABLE4['31-']))
+            out.insert(2, ('31+ (after it)', row['theta_y_deg'], row, PAPER_TABLE4['31+']))
+            break
+    last = rows[-1]
+    out.append(('128 (last state before detachment)', last['theta_y_deg'], last, PAPER_TABLE4[128]))
+    return out, rows
+
+
+def pull_off_summary(work, scene):
+    rows = read_curve(work, scene)
+    lift = [r for r in rows if r['stage'] == 'lift']
+    start = lift[0] if lift else rows[-1]
+    peak = max(lift, key=lambda r: r['P_z_nN']) if lift else start
+    detach = next((r for r in lift if r['u_z_nm'] > peak['u_z_nm'] and r['P_z_nN'] < 0.01 * peak['P_z_nN']), lift[-1])
+    before = lift[lift.index(detach) - 1] if detach in lift and lift.index(detach) > 0 else detach
+    return {
+        'P_max_nN': peak['P_z_nN'], 'u_z_at_P_max': peak['u_z_nm'],
+        'delta_u_z_nm': detach['u_z_nm'] - start['u_z_nm'],
+        'delta_Pi_ext_1e-18J': detach['Pi_ext_1e-18J'] - start['Pi_ext_1e-18J'],
+        'Pi_ext0_per_Pi_c0': start['Pi_ext_per_Pi_c0'],
+        'delta_Pi_ext_per_Pi_c0': detach['Pi_ext_per_Pi_c0'] - start['Pi_ext_per_Pi_c0'],
+        'Pi_ext_per_Pi_c0': before['Pi_ext_per_Pi_c0'], 'Pi_int_per_Pi_c0': before['Pi_int_per_Pi_c0'],
+        'Pi_sa_per_Pi_c0': before['Pi_sa_per_Pi_c0'],
+        'worst_balance_error': max(r['balance_error_per_Pi_c0'] for r in rows),
+        'detached': detach['P_z_nN'] < 0.01 * peak['P_z_nN'], 'rows': lift,
+    }
+
+
+def percent(ours, paper):
+    return f'{100.0 * (ours / paper - 1.0):+.1f} %' if paper else ''
+
+
+def write_tables(work, scenes):
+    tables = os.path.join(work, 'tables')
+    os.makedirs(tables, exist_ok=True)
+    markdown = []
+    if complete(work, 'peel-rotation') or os.path.exists(os.path.join(work, 'peel-rotation.incomplete')):
+        entries, _ = table4(work)
+        markdown.append('### Table 4: peeling by rotation (values / Pi_c0)\n')
+        markdown.append('| theta_y | ours: theta_y [deg] | Pi_ext ours / paper | Pi_int ours / paper | Pi_sa ours / paper '
+                        '| balance error |')
+        markdown.append('|---|---|---|---|---|---|')
+        with open(os.path.join(tables, 'table4.csv'), 'w') as out:
+            out.write('label,theta_y_deg,Pi_ext,Pi_int,Pi_sa,paper_Pi_ext,paper_Pi_int,paper_Pi_sa\n')
+            for label, theta, v, p in entries:
+                out.write(f'{label},{theta:.3f},{v["Pi_ext_per_Pi_c0"]:.4f},{v["Pi_int_per_Pi_c0"]:.4f},'
+                          f'{v["Pi_sa_per_Pi_c0"]:.4f},{p[0]},{p[1]},{p[2]}\n')
+                markdown.append(
+                    f'| {label} | {theta:.2f} | {v["Pi_ext_per_Pi_c0"]:.3f} / {p[0]} ({percent(v["Pi_ext_per_Pi_c0"], p[0])}) '
+                    f'| {v["Pi_int_per_Pi_c0"]:.3f} / {p[1]} ({percent(v["Pi_int_per_Pi_c0"], p[1])}) '
+                    f'| {v["Pi_sa_per_Pi_c0"]:.3f} / {p[2]} ({percent(v["Pi_sa_per_Pi_c0"], p[2])}) '
+                    f'| {v["balance_error_per_Pi_c0"]:.1e} |')
+        markdown.append('')
+    summaries = {s: pull_off_summary(work, s) for s in scenes
+                 if (s.startswith('pull-off') or s.startswith('gamma')) and complete(work, s)}
+    pulls = [t for t in (45, 60, 75, 90) if f'pull-off-{t}' in summaries]
+    if pulls:
+        markdown.append('### Table 6: pull-off at fixed inclination\n')
+        markdown.append('| theta_y | P_max [nN] ours / paper | Delta u_z [nm] ours / paper | Delta Pi_ext [1e-18 J] ours / paper |')
+        markdown.append('|---|---|---|---|')
+        with open(os.path.join(tables, 'table6.csv'), 'w') as out:
+            out.write('theta_y_deg,P_max_nN,delta_u_z_nm,delta_Pi_ext_1e-18J,paper_P_max,paper_delta_u_z,'
+                      'paper_delta_Pi_ext,detached\n')
+            for t in pulls:
+                s, p = summaries[f'pull-off-{t}'], PAPER_TABLE6[t]
+                out.write(f'{t},{s["P_max_nN"]:.4f},{s["delta_u_z_nm"]:.2f},{s["delta_Pi_ext_1e-18J"]:.1f},'
+                          f'{p[0]},{p[1]},{p[2]},{s["detached"]}\n')
+                markdown.append(f'| {t} | {s["P_max_nN"]:.2f} / {p[0]} ({percent(s["P_max_nN"], p[0])}) '
+                                f'| {s["delta_u_z_nm"]:.0f} / {p[1]} ({percent(s["delta_u_z_nm"], p[1])}) '
+                                f'| {s["delta_Pi_ext_1e-18J"]:.0f} / {p[2]} ({percent(s["delta_Pi_ext_1e-18J"], p[2])}) |')
+        markdown.append('')
+        markdown.append('### Table 5: work and stored energies prior to detachment (values / Pi_c0)\n')
+        markdown.append('| theta_y | Pi_ext,0 ours / paper | Delta Pi_ext | Pi_ext | Pi_int | Pi_sa | worst balance error |')
+        markdown.append('|---|---|---|---|---|---|---|')
+        for t in pulls:
+            s = summaries[f'pull-off-{t}']
+            markdown.append(f'| {t} | {s["Pi_ext0_per_Pi_c0"]:.3f} / {PAPER_TABLE5_START[t]} '
+                            f'| {s["delta_Pi_ext_per_Pi_c0"]:.3f} | {s["Pi_ext_per_Pi_c0"]:.3f} '
+                            f'| {s["Pi_int_per_Pi_c0"]:.3f} | {s["Pi_sa_per_Pi_c0"]:.3f} | {s["worst_balance_error"]:.1e} |')
+        markdown.append('')
+    for title, prefix, base in (('Table 7: adhesion strength gamma_W / gamma_W0 (theta_y = 60 deg)', 'gamma-W', 1.0),
+                                ('Table 8: length scale gamma_L / gamma_L0 (theta_y = 60 deg)', 'gamma-L', 1.0)):
+        runs = sorted((float(s.split('-')[-1]), s) for s in summaries if s.startswith(prefix))
+        if 'pull-off-60' in summaries:
+            runs = sorted(runs + [(base, 'pull-off-60')])
+        if len(runs) > 1:
+            markdown.append(f'### {title}\n')
+            markdown.append('| factor | P_max [nN] | Delta u_z [nm] | Delta Pi_ext [1e-18 J] |')
+            markdown.append('|---|---|---|---|')
+            for factor, scene in runs:
+                s = summaries[scene]
+                markdown.append(f'| {factor:g} | {s["P_max_nN"]:.2f} | {s["delta_u_z_nm"]:.0f} | {s["delta_Pi_ext_1e-18J"]:.0f} |')
+            markdown.append('')
+    if 'pull-off-60-stiction' in summaries and 'pull-off-60' in summaries:
+        a, b = summaries['pull-off-60'], summaries['pull-off-60-stiction']
+        markdown.append('### Stiction vs frictionless at 60 deg\n')
+        markdown.append('| law | P_max [nN] | Delta u_z [nm] | Delta Pi_ext [1e-18 J] |')
+        markdown.append('|---|---|---|---|')
+        for name, s in (('frictionless', a), ('stiction', b)):
+            markdown.append(f'| {name} | {s["P_max_nN"]:.2f} | {s["delta_u_z_nm"]:.0f} | {s["delta_Pi_ext_1e-18J"]:.0f} |')
+        markdown.append('')
+    text = '\n'.join(markdown)
+    open(os.path.join(tables, 'tables.md'), 'w').write(text)
+    return text, summaries
+
+
+def plots(work, summaries, directory):
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.pyplot as plt
+    pictures = []
+    if os.path.exists(os.path.join(work, 'peel-rotation', 'curve.csv')):
+        rows = read_curve(work, 'peel-rotation')
+        fig, axis = plt.subplots(figsize=(7, 4))
+        axis.plot([r['theta_y_deg'] for r in rows], [r['M_y_per_ER0^3'] for r in rows], '.-', markersize=2)
+        axis.set_xlabel('theta_y [deg]')
+        axis.set_ylabel('M_y / (E R0^3)')
+        axis.set_title('Peeling by rotation (cf. paper Fig. 6)')
+        fig.tight_layout()
+        name = 'validation-fig6-moment.png'
+        fig.savefig(os.path.join(directory, name), dpi=110)
+        pictures.append(name)
+    groups = (('validation-fig8-pull-off.png', 'Pull-off at fixed inclination (cf. paper Fig. 8)',
+               [(f'pull-off-{t}', f'{t} deg') for t in (45, 60, 75, 90)]),
+              ('validation-fig9-stiction.png', 'Stiction vs frictionless at 60 deg (cf. paper Fig. 9)',
+               [('pull-off-60', 'frictionless'), ('pull-off-60-stiction', 'stiction')]),
+              ('validation-fig10-gamma-W.png', 'gamma_W / gamma_W0 at 60 deg (cf. paper Fig. 10, left)',
+               [('gamma-W-0.667', '1.5^-1'), ('pull-off-60', '1'), ('gamma-W-1.5', '1.5'), ('gamma-W-2.25', '1.5^2')]),
+              ('validation-fig10-gamma-L.png', 'gamma_L / gamma_L0 at 60 deg (cf. paper Fig. 10, right)',
+               [('gamma-L-0.444', '1.5^-2'), ('gamma-L-0.667', '1.5^-1'), ('pull-off-60', '1'), ('gamma-L-1.5', '1.5')]))
+    for name, title, curves in groups:
+        present = [(s, label) for s, label in curves if s in summaries]
+        if not present:
+            continue
+        fig, axis = plt.subplots(figsize=(7, 4))
+        for scene, label in present:
+            rows = summaries[scene]['rows']
+            axis.plot([r['u_z_nm'] for r in rows], [r['P_z_nN'] for r in rows], '.-', markersize=2, label=label)
+        axis.set_xlabel('u_z of the end face centre from the undeformed state [nm]')
+        axis.set_ylabel('P_z [nN]')
+        axis.set_title(title)
+        axis.legend()
+        fig.tight_layout()
+        fig.savefig(os.path.join(directory, name), dpi=110)
+        pictures.append(name)
+    return pictures
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument('study', choices=sorted(STUDIES))
+    parser.add_argument('--jobs', type=int, default=2)
+    parser.add_argument('--work', default=os.path.join(ROOT, 'study-output'))
+    parser.add_argument('--docs', action='store_true', help='write docs/validation.md and its figures')
+    arguments = parser.parse_args()
+    if not os.path.exists(APP):
+        sys.exit(f'{APP} not found: build first (bash scripts/build.sh)')
+    scenes = STUDIES[arguments.study]
+    started = time.time()
+    failed = run_all(scenes, arguments.work, arguments.jobs)
+    print(f'study {arguments.study}: {len(scenes) - len(failed)} of {len(scenes)} runs complete in '
+          f'{time.time() - started:.0f} s' + (f'; failed: {", ".join(failed)}' if failed else ''), flush=True)
+    text, summaries = write_tables(arguments.work, STUDIES['all'])
+    print(text)
+    if arguments.docs:
+        docs = os.path.join(ROOT, 'docs')
+        pictures = plots(arguments.work, summaries, docs)
+        template = open(os.path.join(ROOT, 'docs', 'validation-notes.md')).read()
+        with open(os.path.join(docs, 'validation.md'), 'w') as out:
+            out.write(template.replace('{{TABLES}}', text).replace(
+                '{{FIGURES}}', '\n\n'.join(f'![{p}]({p})' for p in pictures)))
+        print('wrote docs/validation.md')
+    return 1 if failed else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
