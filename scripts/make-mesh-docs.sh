@@ -49,5 +49,5 @@ print('  larger than the paper\'s at the same level (their coarse pad is nearly 
 print('  use `Mesh/refinement factor` (an extra k x k split of the pad) rather than reading the levels as equivalent.')
 PY
 cp "$work/coarse/mesh_summary.txt" "$root/docs/mesh-coarse-summary.txt"
-xvfb-run -a pvbatch "$root/scripts/render_mesh.py" "$work/coarse/mesh.xmf" "$root/docs/mesh-coarse.png" 2>&1 | grep -v -e '^$' -e WARN || true
+bash "$root/scripts/render.sh" "$root/scripts/render_mesh.py" "$work/coarse/mesh.xmf" "$root/docs/mesh-coarse.png"
 echo "wrote docs/mesh.md and docs/mesh-coarse.png"

@@ -1,7 +1,7 @@
 """Renders a spatula mesh (mesh.xmf written by the app) to one PNG: side, top and bottom views of the full
 spatula (the half mesh and its mirror image) coloured by part, like the paper's Figs. 2-3. Headless:
 
-    xvfb-run -a pvbatch scripts/render_mesh.py <output-dir>/mesh.xmf <picture.png>
+    scripts/render.sh scripts/render_mesh.py <output-dir>/mesh.xmf <picture.png>
 """
 import os
 import sys
@@ -14,7 +14,7 @@ from PIL import Image
 
 _DisableFirstRenderCameraReset()
 
-xmf, png = sys.argv[1], sys.argv[2]
+xmf, png = os.path.abspath(sys.argv[1]), sys.argv[2]  # the reader resolves mesh.h5 from an absolute path only
 reader = Xdmf3ReaderS(FileName=[xmf])
 full = Reflect(Input=reader, Plane='Y Min', CopyInput=1)
 full.UpdatePipeline()

@@ -108,6 +108,8 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
   auto on_point = [&](const analysis::LoadPoint& p, const discretization::Vector& x) {
     if (root) {
       curve->write(p, stage, theta_s);
+      const std::ios_base::fmtflags flags = out.flags();
+      const std::streamsize precision = out.precision();
       out << "step " << std::setw(4) << p.step << "  " << stage << "  theta_y " << std::fixed << std::setprecision(3)
           << std::setw(8) << (theta_s + p.rotation) / degree << " deg  u_z " << std::setw(9) << p.lift
           << " nm  M_y " << std::setprecision(4) << std::setw(10) << 2 * p.moment << " nN nm  P_z " << std::setw(9)
@@ -118,7 +120,9 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
             << "  faces " << p.active_faces << "+" << p.skipped_faces;
       out << "  newton "
           << p.newton_iterations << "  neg.piv " << p.negative_pivots << "  " << std::setprecision(1)
-          << p.seconds << " s" << std::defaultfloat << std::endl;
+          << p.seconds << " s" << std::endl;
+      out.flags(flags);   // the step line's format stays with it
+      out.precision(precision);
     }
     const int interval = scene.output.field_interval;
     if (interval > 0 && p.step % interval == 0)

@@ -32,8 +32,9 @@ print(f'elastic rotation: M_y({last["theta_y_deg"]} deg) = {moment:.4f} nN nm, P
 PY
 if command -v pvbatch > /dev/null && command -v xvfb-run > /dev/null; then
   cat > check.py <<'PY'
+import os
 from paraview.simple import Xdmf3ReaderT
-states = Xdmf3ReaderT(FileName=['one/mesh_states.xmf'])
+states = Xdmf3ReaderT(FileName=[os.path.abspath('one/mesh_states.xmf')])
 states.UpdatePipelineInformation()
 times = states.TimestepValues
 assert len(times) >= 5, times
@@ -44,5 +45,5 @@ low, high = i1.GetRange()
 assert low < 0 < high, (low, high)
 print('ParaView read', len(times), 'states; I1 range at the last one', low, high)
 PY
-  xvfb-run -a pvbatch check.py 2>&1 | grep -v -e '^$' -e WARN
+  bash "$source_dir/scripts/render.sh" check.py
 fi

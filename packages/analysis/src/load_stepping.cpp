@@ -6,9 +6,11 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <iomanip>
 #include <ostream>
 #include <sstream>
+#include <string>
 #include <variant>
 
 namespace spatula::analysis {
@@ -18,6 +20,14 @@ namespace {
 double now()
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// A load value for the log, independent of the stream's current format.
+std::string load_text(double value)
+{
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4f", value);
+  return text;
 }
 
 }  // namespace
@@ -119,13 +129,13 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
     std::ostringstream table;
     const auto result = newton_.solve(*trial, tables_ ? &table : nullptr);
     if (!result.converged) {
-      if (log_) *log_ << table.str() << "  step to " << name << " = " << (value + direction * increment) / unit
+      if (log_) *log_ << table.str() << "  step to " << name << " = " << load_text((value + direction * increment) / unit)
                       << " failed (" << result.failure << "); cutting the increment\n";
       increment *= steps.cut;
       if (increment < steps.minimum * unit * (1 - 1e-12)) {
         const double unreached = value + direction * increment / steps.cut;
         if (past_folds_ == PastFolds::jump) {   // an instability: jump at the unreached load to the far side
-          if (log_) *log_ << "  " << name << " = " << unreached / unit << ": no equilibrium near the last one "
+          if (log_) *log_ << "  " << name << " = " << load_text(unreached / unit) << ": no equilibrium near the last one "
                           << "(an instability); jumping to the next stable state\n";
           auto failure = jump(controlled, unreached, on_point);
           system.set_control(control);
@@ -136,7 +146,7 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
           continue;
         }
         if (past_folds_ == PastFolds::arc_length && direction > 0) {   // go round the fold, resume beyond
-          if (log_) *log_ << "  " << name << " = " << unreached / unit << " not reachable on this branch: arc-length "
+          if (log_) *log_ << "  " << name << " = " << load_text(unreached / unit) << " not reachable on this branch: arc-length "
                           << "continuation round the fold\n";
           auto failure = arc_length(controlled, unreached, control, *arc_length_, unit,
                                     [&](const LoadPoint& p, const Vector& x) {
@@ -313,7 +323,7 @@ std::optional<Failure> LoadPath::jump(Master controlled, double value, const Cal
   after.dissipated += after.released;
   if (log_)
     *log_ << "  jumped in " << iterations << " iterations (energy descent, then Newton), released "
-          << 2.0 * after.released << " nN nm (full spatula)\n";
+          << load_text(2.0 * after.released) << " nN nm (full spatula)\n";
   if (detachment_test_ && detachment_test_(after)) detached_ = true;
   if (on_point) on_point(after, *x_);
   return std::nullopt;

@@ -1,0 +1,187 @@
+#!/usr/bin/env python3
+"""Numerical stress tests: scenes at the edges of the parameter space, each of which must either reach detachment
+(or its final load) or stop with a clear diagnosis (which step, which quantity, why). Never a NaN in the output,
+never a hang, never a silently wrong curve (the energy balance error is checked at every state).
+
+    benchmarks/stress_tests.py [--jobs 2] [--work stress-output] [--only NAME ...] [--docs] [--time-limit 1200]
+
+Cases (coarse mesh, Q1C2, pull-off at 60 deg unless said): gamma_W / gamma_W0 = 1.5^-2 .. 1.5^3, gamma_L / gamma_L0 =
+1.5^-3 .. 1.5^2, rough substrate z0 = 8 and 10 nm (rotation to 45 deg), step-size maxima x4, Q1C1 (rotation to
+140 deg and pull-off). With --docs the outcome matrix goes to docs/stability.md (the page's text is the template
+docs/stability-notes.md). The same script with --only runs single cases (CI runs one cheap one).
+"""
+import argparse
+import csv
+import math
+import os
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+APP = os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula')
+GAMMA_W0, GAMMA_L0 = 25.266, 2.5
+BALANCE_LIMIT = 2e-3   # the paper's bound on |Pi_ext - Pi_int - Pi_sa - D| / Pi_c0
+
+
+def scene(name, adhesion='', loading_type='lift', theta=60, rotation_maximum=2, lift_maximum=5, mesh='coarse',
+          final=600):
+    lift = ('<Parameter name="final lift" type="double" value="%g"/>'
+            '<Parameter name="final lift relative" type="bool" value="true"/>' % final) if loading_type == 'lift' else ''
+    return f'''<ParameterList name="{name}">
+  <ParameterList name="Mesh"><Parameter name="level" type="string" value="{mesh}"/></ParameterList>
+  <ParameterList name="Adhesion">
+    <Parameter name="law" type="string" value="frictionless"/>
+    {adhesion}
+  </ParameterList>
+  <ParameterList name="Loading">
+    <Parameter name="type" type="string" value="{loading_type}"/>
+    <Parameter name="theta_y" type="double" value="{theta}"/>
+    {lift}
+    <ParameterList name="Rotation Steps"><Parameter name="maximum" type="double" value="{rotation_maximum}"/>
+      <Parameter name="minimum" type="double" value="0.01"/></ParameterList>
+    <ParameterList name="Lift Steps"><Parameter name="maximum" type="double" value="{lift_maximum}"/>
+      <Parameter name="minimum" type="double" value="0.01"/></ParameterList>
+  </ParameterList>
+  <ParameterList name="Output"><Parameter name="directory" type="string" value="{name}"/>
+    <Parameter name="write mesh" type="bool" value="false"/></ParameterList>
+</ParameterList>
+'''
+
+
+def normalized(gamma_w, gamma_l):
+    return ('<Parameter name="specification" type="string" value="normalized"/>'
+            f'<Parameter name="gamma_W" type="double" value="{gamma_w:.6g}"/>'
+            f'<Parameter name="gamma_L" type="double" value="{gamma_l:.6g}"/>')
+
+
+def cases():
+    out = []
+    for k in (-2, -1, 0, 1, 2, 3):
+        out.append((f'gamma-W-1.5^{k}', f'gamma_W = 1.5^{k} gamma_W0, pull-off at 60 deg',
+                    scene(f'gamma-W-1.5^{k}', normalized(GAMMA_W0 * 1.5 ** k, GAMMA_L0))))
+    for k in (-3, -2, -1, 1, 2):
+        out.append((f'gamma-L-1.5^{k}', f'gamma_L = 1.5^{k} gamma_L0, pull-off at 60 deg',
+                    scene(f'gamma-L-1.5^{k}', normalized(GAMMA_W0, GAMMA_L0 * 1.5 ** k))))
+    for z0 in (8, 10):
+        rough = ('<Parameter name="substrate" type="string" value="rough"/>'
+                 f'<ParameterList name="Rough Substrate"><Parameter name="z0" type="double" value="{z0}"/></ParameterList>')
+        out.append((f'rough-z0-{z0}', f'rough substrate z0 = {z0} nm, rotation to 45 deg',
+                    scene(f'rough-z0-{z0}', rough, 'rotation', 45)))
+    out.append(('steps-x4', 'step maxima x4 (8 deg, 20 nm), pull-off at 60 deg',
+                scene('steps-x4', rotation_maximum=8, lift_maximum=20)))
+    q1c1 = '<Parameter name="enrichment" type="string" value="Q1C1"/>'
+    out.append(('Q1C1-rotation', 'Q1C1, peel by rotation to 140 deg', scene('Q1C1-rotation', q1c1, 'rotation', 140)))
+    out.append(('Q1C1-pull-off', 'Q1C1, pull-off at 60 deg', scene('Q1C1-pull-off', q1c1)))
+    return out
+
+
+def classify(work, name, status, log_text, seconds, time_limit):
+    """One row of the outcome matrix."""
+    directory = os.path.join(work, name)
+    curve = os.path.join(directory, 'curve.csv')
+    if not os.path.exists(curve):
+        curve = os.path.join(work, name + '.incomplete', 'curve.csv')
+    rows = list(csv.DictReader(open(curve))) if os.path.exists(curve) else []
+    finite = all(math.isfinite(float(v)) for r in rows for k, v in r.items() if k != 'stage')
+    worst = max((float(r['balance_error_per_Pi_c0']) for r in rows), default=float('nan'))
+    jumps = sum(int(float(r['after_jump'])) for r in rows)
+    last = rows[-1] if rows else {}
+    where = (f"theta_y {float(last['theta_y_deg']):.1f} deg, u_z {float(last['u_z_nm']):.0f} nm" if last else '-')
+    lines = log_text.splitlines()
+    detached = [l for l in lines if l.startswith('detachment')]
+    errors = [l for l in lines if l.startswith('spatula:')]
+    if status is None:
+        outcome = f'HANG: killed after {time_limit} s'
+    elif not finite:
+        outcome = 'NON-FINITE VALUE IN curve.csv'
+    elif status == 0 and detached:
+        outcome = 'detached: ' + detached[0].split(':', 1)[1].strip()
+    elif status == 0:
+        outcome = 'reached the final load'
+    elif errors:
+        outcome = 'stopped: ' + errors[-1].split(':', 1)[1].strip()
+    else:
+        outcome = f'FAILED WITHOUT A DIAGNOSIS (exit {status})'
+    balance_ok = not rows or worst <= BALANCE_LIMIT
+    if not balance_ok:
+        outcome += f'; BALANCE ERROR {worst:.1e} > {BALANCE_LIMIT:g}'
+    acceptable = status is not None and finite and balance_ok and (status == 0 or bool(errors))
+    peak = max((float(r['P_z_nN']) for r in rows if r['stage'] == 'lift'), default=float('nan'))
+    return {'case': name, 'outcome': outcome, 'acceptable': acceptable, 'states': len(rows), 'jumps': jumps,
+            'last': where, 'P_max': peak, 'balance': worst, 'seconds': seconds}
+
+
+def run(work, selected, jobs, time_limit):
+    os.makedirs(work, exist_ok=True)
+    environment = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
+    pending, running, results = list(selected), {}, {}
+    while pending or running:
+        while pending and len(running) < jobs:
+            name, description, text = pending.pop(0)
+            xml = os.path.join(work, name + '.xml')
+            open(xml, 'w').write(text)
+            log = open(os.path.join(work, name + '.log'), 'w')
+            process = subprocess.Popen([APP, xml], cwd=work, stdout=log, stderr=subprocess.STDOUT, env=environment)
+            running[name] = (process, log, time.time(), description)
+            print(f'[{name}] started: {description}', flush=True)
+        time.sleep(2)
+        for name, (process, log, started, description) in list(running.items()):
+            elapsed = time.time() - started
+            status = process.poll()
+            if status is None and elapsed < time_limit:
+                continue
+            if status is None:
+                process.kill()
+                process.wait()
+            log.close()
+            text = open(os.path.join(work, name + '.log')).read()
+            row = classify(work, name, status, text, elapsed, time_limit)
+            row['description'] = description
+            results[name] = row
+            print(f'[{name}] {row["outcome"]} ({elapsed:.0f} s, {row["states"]} states, worst balance '
+                  f'{row["balance"]:.1e})', flush=True)
+            del running[name]
+    return [results[name] for name, _, _ in selected]
+
+
+def markdown(rows):
+    lines = ['| case | outcome | converged states | jumps | last state | P_max [nN] | worst balance error / Pi_c0 | wall [s] | acceptable |',
+             '|---|---|---|---|---|---|---|---|---|']
+    for r in rows:
+        peak = f'{r["P_max"]:.2f}' if math.isfinite(r['P_max']) else '-'
+        lines.append(f'| {r["description"]} | {r["outcome"]} | {r["states"]} | {r["jumps"]} | {r["last"]} | {peak} '
+                     f'| {r["balance"]:.1e} | {r["seconds"]:.0f} | {"yes" if r["acceptable"] else "**no**"} |')
+    return '\n'.join(lines)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument('--jobs', type=int, default=2)
+    parser.add_argument('--work', default=os.path.join(ROOT, 'stress-output'))
+    parser.add_argument('--only', nargs='*', help='case names (default: all)')
+    parser.add_argument('--time-limit', type=float, default=1200.0, help='seconds before a run counts as a hang')
+    parser.add_argument('--docs', action='store_true', help='write docs/stability.md')
+    arguments = parser.parse_args()
+    if not os.path.exists(APP):
+        sys.exit(f'{APP} not found: build first (bash scripts/build.sh)')
+    everything = cases()
+    names = [c[0] for c in everything]
+    for name in arguments.only or []:
+        if name not in names:
+            sys.exit(f'unknown case "{name}"; cases: {", ".join(names)}')
+    selected = [c for c in everything if not arguments.only or c[0] in arguments.only]
+    started = time.time()
+    rows = run(arguments.work, selected, arguments.jobs, arguments.time_limit)
+    table = markdown(rows)
+    print(table)
+    print(f'{len(rows)} cases in {time.time() - started:.0f} s')
+    if arguments.docs:
+        template = open(os.path.join(ROOT, 'docs', 'stability-notes.md')).read()
+        open(os.path.join(ROOT, 'docs', 'stability.md'), 'w').write(template.replace('{{TABLE}}', table))
+        print('wrote docs/stability.md')
+    return 0 if all(r['acceptable'] for r in rows) else 1
+
+
+if __name__ == '__main__':
+    sys.exit(main())
