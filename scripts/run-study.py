@@ -10,13 +10,14 @@ Results: <work>/<scene>/ per run, <work>/tables/*.csv and *.md, and with --docs 
 Needs a build (build/apps/spatula/spatula). Runs already complete in <work> are not repeated.
 """
 import argparse
-import csv
-import math
 import os
 import shutil
 import subprocess
 import sys
 import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from curves import interpolate, pull_off_summary, read_curve  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 APP = os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula')
@@ -86,21 +87,6 @@ def run_all(scenes, work, jobs):
     return failed
 
 
-def read_curve(work, scene):
-    path = os.path.join(work, scene, 'curve.csv')
-    if not os.path.exists(path):
-        path = os.path.join(work, scene + '.incomplete', 'curve.csv')
-    return [{k: (v if k == 'stage' else float(v)) for k, v in row.items()} for row in csv.DictReader(open(path))]
-
-
-def interpolate(rows, key, at, columns):
-    for a, b in zip(rows, rows[1:]):
-        if a[key] <= at <= b[key] and b[key] > a[key]:
-            t = (at - a[key]) / (b[key] - a[key])
-            return {c: a[c] + t * (b[c] - a[c]) for c in columns}
-    return None
-
-
 def table4(work):
     rows = read_curve(work, 'peel-rotation')
     columns = ['Pi_ext_per_Pi_c0', 'Pi_int_per_Pi_c0', 'Pi_sa_per_Pi_c0', 'balance_error_per_Pi_c0', 'M_y_nNnm']
@@ -118,26 +104,6 @@ def table4(work):
     last = rows[-1]
     out.append(('128 (last state before detachment)', last['theta_y_deg'], last, PAPER_TABLE4[128]))
     return out, rows
-
-
-def pull_off_summary(work, scene):
-    rows = read_curve(work, scene)
-    lift = [r for r in rows if r['stage'] == 'lift']
-    start = lift[0] if lift else rows[-1]
-    peak = max(lift, key=lambda r: r['P_z_nN']) if lift else start
-    detach = next((r for r in lift if r['u_z_nm'] > peak['u_z_nm'] and r['P_z_nN'] < 0.01 * peak['P_z_nN']), lift[-1])
-    before = lift[lift.index(detach) - 1] if detach in lift and lift.index(detach) > 0 else detach
-    return {
-        'P_max_nN': peak['P_z_nN'], 'u_z_at_P_max': peak['u_z_nm'],
-        'delta_u_z_nm': detach['u_z_nm'] - start['u_z_nm'],
-        'delta_Pi_ext_1e-18J': detach['Pi_ext_1e-18J'] - start['Pi_ext_1e-18J'],
-        'Pi_ext0_per_Pi_c0': start['Pi_ext_per_Pi_c0'],
-        'delta_Pi_ext_per_Pi_c0': detach['Pi_ext_per_Pi_c0'] - start['Pi_ext_per_Pi_c0'],
-        'Pi_ext_per_Pi_c0': before['Pi_ext_per_Pi_c0'], 'Pi_int_per_Pi_c0': before['Pi_int_per_Pi_c0'],
-        'Pi_sa_per_Pi_c0': before['Pi_sa_per_Pi_c0'],
-        'worst_balance_error': max(r['balance_error_per_Pi_c0'] for r in rows),
-        'detached': detach['P_z_nN'] < 0.01 * peak['P_z_nN'], 'rows': lift,
-    }
 
 
 def percent(ours, paper):

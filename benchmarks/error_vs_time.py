@@ -1,0 +1,262 @@
+#!/usr/bin/env python3
+"""Run time against error: the pull-off at 60 deg (rotation to 60 deg with zero net force, then lift to detachment)
+over mesh level x Q1C1/Q1C2 x contact quadrature x linear solver x MPI ranks x step-size control.
+
+    benchmarks/error_vs_time.py [--set grid refinement solvers ...] [--work DIR] [--docs]
+
+Measured per run: P_max, Delta u_z and Delta Pi_ext of the pull-off, M_y at theta_y = 15, 20, 25 deg (the smooth part
+of the moment curve), and the wall time (rotation, lift, total; one run at a time, so timings are not disturbed).
+Reference: Richardson extrapolation over the in-plane refinement k = 1, 2, 4 (coarse, coarse with refinement factor
+2, medium; Q1C2, 6x6 points), with the observed order; the errors of every run are relative to it. Results:
+<work>/results.csv, and with --docs docs/error-vs-time.md and docs/error-vs-time.png (error against time with the
+Pareto front). Runs already in <work>/results.csv are not repeated.
+"""
+import argparse
+import csv
+import math
+import os
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+APP = os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula')
+sys.path.insert(0, os.path.join(ROOT, 'scripts'))
+from curves import interpolate, pull_off_summary, read_curve  # noqa: E402
+
+DEFAULT = dict(level='coarse', refinement=1, enrichment='Q1C2', quadrature=6, solver='mumps', lag=0, ranks=1,
+               rotation_maximum=2.0, lift_maximum=5.0)
+SETS = {
+    # mesh level x enrichment x contact quadrature on the coarse mesh
+    'grid': [dict(enrichment=e, quadrature=q) for e in ('Q1C1', 'Q1C2') for q in (2, 3, 4, 6)],
+    # in-plane refinement k = 1, 2, 4 (the reference) and the enrichment / quadrature on the finer meshes
+    'refinement': [dict(refinement=2), dict(level='medium'), dict(refinement=2, enrichment='Q1C1'),
+                   dict(refinement=2, quadrature=3), dict(level='medium', quadrature=3)],
+    # linear solvers, ranks and step control on the coarse x2 mesh
+    'solvers': [dict(refinement=2, lag=4), dict(refinement=2, solver='gmres-ilu'), dict(refinement=2, ranks=2),
+                dict(refinement=2, rotation_maximum=4.0, lift_maximum=10.0),
+                dict(refinement=2, rotation_maximum=1.0, lift_maximum=2.5)],
+    'medium-solvers': [dict(level='medium', lag=4), dict(level='medium', ranks=2, lag=4)],
+}
+REFERENCE = [dict(), dict(refinement=2), dict(level='medium')]
+MOMENT_ANGLES = (15.0, 20.0, 25.0)
+QUANTITIES = ('P_max_nN', 'delta_u_z_nm', 'delta_Pi_ext_1e-18J')
+
+
+def configuration(overrides):
+    c = dict(DEFAULT)
+    c.update(overrides)
+    return c
+
+
+def name(c):
+    parts = [c['level'] + (f'x{c["refinement"]}' if c['refinement'] > 1 else ''), c['enrichment'], f'q{c["quadrature"]}',
+             c['solver'] + (f'-lag{c["lag"]}' if c['lag'] else ''), f'np{c["ranks"]}',
+             f'steps{c["rotation_maximum"]:g}-{c["lift_maximum"]:g}']
+    return '_'.join(parts)
+
+
+def scene(c, directory):
+    return f'''<ParameterList name="{directory}">
+  <ParameterList name="Mesh"><Parameter name="level" type="string" value="{c['level']}"/>
+    <Parameter name="refinement factor" type="int" value="{c['refinement']}"/></ParameterList>
+  <ParameterList name="Adhesion">
+    <Parameter name="law" type="string" value="frictionless"/>
+    <Parameter name="enrichment" type="string" value="{c['enrichment']}"/>
+    <Parameter name="quadrature" type="int" value="{c['quadrature']}"/>
+  </ParameterList>
+  <ParameterList name="Loading">
+    <Parameter name="type" type="string" value="lift"/>
+    <Parameter name="theta_y" type="double" value="60"/>
+    <Parameter name="final lift" type="double" value="600"/>
+    <Parameter name="final lift relative" type="bool" value="true"/>
+    <ParameterList name="Rotation Steps"><Parameter name="maximum" type="double" value="{c['rotation_maximum']}"/>
+      <Parameter name="minimum" type="double" value="0.01"/></ParameterList>
+    <ParameterList name="Lift Steps"><Parameter name="maximum" type="double" value="{c['lift_maximum']}"/>
+      <Parameter name="minimum" type="double" value="0.01"/></ParameterList>
+  </ParameterList>
+  <ParameterList name="Linear Solver"><Parameter name="type" type="string" value="{c['solver']}"/>
+    <Parameter name="lag" type="int" value="{c['lag']}"/></ParameterList>
+  <ParameterList name="Output"><Parameter name="directory" type="string" value="{directory}"/>
+    <Parameter name="write mesh" type="bool" value="false"/></ParameterList>
+</ParameterList>
+'''
+
+
+def measure(work, c):
+    directory = name(c)
+    xml = os.path.join(work, directory + '.xml')
+    open(xml, 'w').write(scene(c, directory))
+    command = [APP, xml]
+    if c['ranks'] > 1:
+        command = ['mpirun', '--allow-run-as-root', '-np', str(c['ranks'])] + command
+    environment = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
+    started = time.time()
+    with open(os.path.join(work, directory + '.log'), 'w') as log:
+        status = subprocess.call(command, cwd=work, stdout=log, stderr=subprocess.STDOUT, env=environment)
+    wall = time.time() - started
+    row = dict(c, name=directory, status=status, wall_s=round(wall, 1))
+    if status != 0:
+        return row
+    rows = read_curve(work, directory)
+    rotation = [r for r in rows if r['stage'] == 'rotation']
+    row['rotation_s'] = round(rotation[-1]['wall_s'], 1)
+    row['lift_s'] = round(rows[-1]['wall_s'] - rotation[-1]['wall_s'], 1)
+    row['newton_iterations'] = int(sum(r['newton_iterations'] for r in rows))
+    summary = pull_off_summary(work, directory)
+    for q in QUANTITIES:
+        row[q] = summary[q]
+    for angle in MOMENT_ANGLES:
+        row[f'M_y_{angle:g}'] = interpolate(rotation, 'theta_y_deg', angle, ['M_y_nNnm'])['M_y_nNnm']
+    row['worst_balance'] = summary['worst_balance_error']
+    return row
+
+
+def load(path):
+    if not os.path.exists(path):
+        return {}
+    out = {}
+    for r in csv.DictReader(open(path)):
+        out[r['name']] = {k: (v if k in ('name', 'level', 'enrichment', 'solver') else float(v) if v else None)
+                          for k, v in r.items()}
+    return out
+
+
+def save(path, results):
+    keys = []
+    for r in results.values():
+        keys += [k for k in r if k not in keys]
+    with open(path, 'w') as out:
+        writer = csv.DictWriter(out, keys)
+        writer.writeheader()
+        for r in results.values():
+            writer.writerow(r)
+
+
+def richardson(values):
+    """The extrapolated limit of values at refinement 1, 2, 4 (halving h), the observed order, and an uncertainty."""
+    a, b, c = values
+    if (a - b) * (b - c) > 0 and abs(b - c) > 0:
+        order = min(max(math.log(abs(a - b) / abs(b - c), 2.0), 0.5), 4.0)
+        limit = c + (c - b) / (2.0 ** order - 1.0)
+        return limit, order, abs(limit - c)
+    return c, float('nan'), abs(c - b)   # not monotone: the finest value, with the last change as its uncertainty
+
+
+def reference(results):
+    names = [name(configuration(o)) for o in REFERENCE]
+    if not all(n in results and results[n].get('status') == 0 for n in names):
+        return None
+    out = {}
+    keys = list(QUANTITIES) + [f'M_y_{a:g}' for a in MOMENT_ANGLES]
+    for key in keys:
+        out[key] = richardson([results[n][key] for n in names])
+    return out
+
+
+def errors(row, ref):
+    pull = max(abs(row[q] / ref[q][0] - 1.0) for q in QUANTITIES)
+    moment = max(abs(row[f'M_y_{a:g}'] / ref[f'M_y_{a:g}'][0] - 1.0) for a in MOMENT_ANGLES)
+    return pull, moment
+
+
+def document(results, ref, work):
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.pyplot as plt
+    done = [r for r in results.values() if r.get('status') == 0]
+    lines = ['# Run time against error: pull-off at 60°', '',
+             'Written by `benchmarks/error_vs_time.py --docs` (see its header for what is measured); numbers from one '
+             'run of each configuration on this 2-core machine, one run at a time.', '',
+             '## Reference (Richardson extrapolation over k = 1, 2, 4; Q1C2, 6 × 6 points)', '',
+             '| quantity | k = 1 | k = 2 | k = 4 | extrapolated | observed order | uncertainty |', '|---|---|---|---|---|---|---|']
+    names = [name(configuration(o)) for o in REFERENCE]
+    for key, (limit, order, uncertainty) in ref.items():
+        values = ' | '.join(f'{results[n][key]:.4g}' for n in names)
+        lines.append(f'| {key} | {values} | {limit:.4g} | {order:.2f} | {uncertainty:.2g} |')
+    lines += ['', '## Every configuration', '',
+              '| configuration | wall [s] | rotation [s] | lift [s] | Newton its | P_max [nN] | Δu_z [nm] | ΔΠ_ext | '
+              'pull-off error | M_y error | worst balance |', '|---|---|---|---|---|---|---|---|---|---|---|']
+    points = []
+    for r in sorted(done, key=lambda r: r['wall_s']):
+        pull, moment = errors(r, ref)
+        points.append((r['wall_s'], max(pull, moment), r['name']))
+        lines.append(f'| {r["name"]} | {r["wall_s"]:.0f} | {r["rotation_s"]:.0f} | {r["lift_s"]:.0f} | '
+                     f'{r["newton_iterations"]:.0f} | {r["P_max_nN"]:.3f} | {r["delta_u_z_nm"]:.1f} | '
+                     f'{r["delta_Pi_ext_1e-18J"]:.0f} | {100 * pull:.2f} % | {100 * moment:.2f} % | '
+                     f'{r["worst_balance"]:.1e} |')
+    failed = [r for r in results.values() if r.get('status') != 0]
+    for r in failed:
+        lines.append(f'| {r["name"]} | {r["wall_s"]:.0f} | failed (exit {r["status"]:.0f}, see {r["name"]}.log) |'
+                     ' | | | | | | | |')
+    front, best = [], float('inf')
+    for wall, error, label in sorted(points):
+        if error < best:
+            front.append((wall, error, label))
+            best = error
+    lines += ['', '## Pareto front (no configuration is both faster and more accurate)', '',
+              '| configuration | wall [s] | largest error |', '|---|---|---|']
+    lines += [f'| {label} | {wall:.0f} | {100 * error:.2f} % |' for wall, error, label in front]
+    within = [p for p in points if p[1] <= 0.01]
+    if within:
+        fastest = min(within)
+        lines += ['', f'Fastest configuration within 1 %: **{fastest[2]}** ({fastest[0]:.0f} s, '
+                      f'{100 * fastest[1]:.2f} %).']
+    else:
+        lines += ['', 'No configuration measured here is within 1 % of the reference in every quantity.']
+    figure, axis = plt.subplots(figsize=(8, 5))
+    for wall, error, label in points:
+        axis.loglog(wall, 100 * error, 'o', color='tab:blue')
+        axis.annotate(label.replace('_', ' '), (wall, 100 * error), fontsize=6, xytext=(3, 3), textcoords='offset points')
+    axis.loglog([p[0] for p in front], [100 * p[1] for p in front], '-', color='tab:red', label='Pareto front')
+    axis.axhline(1.0, color='grey', linestyle='--', label='1 %')
+    axis.set_xlabel('wall time, rotation to 60° + pull-off [s]')
+    axis.set_ylabel('largest relative error (P_max, Δu_z, ΔΠ_ext, M_y) [%]')
+    axis.legend()
+    axis.grid(alpha=0.3, which='both')
+    figure.tight_layout()
+    figure.savefig(os.path.join(ROOT, 'docs', 'error-vs-time.png'), dpi=110)
+    lines += ['', '![error against wall time](error-vs-time.png)', '']
+    open(os.path.join(ROOT, 'docs', 'error-vs-time.md'), 'w').write('\n'.join(lines))
+    print('wrote docs/error-vs-time.md and docs/error-vs-time.png')
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument('--set', nargs='*', default=['grid', 'refinement', 'solvers'], choices=sorted(SETS))
+    parser.add_argument('--work', default=os.path.join(ROOT, 'benchmark-output', 'error-vs-time'))
+    parser.add_argument('--docs', action='store_true')
+    arguments = parser.parse_args()
+    if not os.path.exists(APP):
+        sys.exit(f'{APP} not found: build first (bash scripts/build.sh)')
+    os.makedirs(arguments.work, exist_ok=True)
+    path = os.path.join(arguments.work, 'results.csv')
+    results = load(path)
+    wanted = [configuration(o) for o in REFERENCE]
+    for s in arguments.set:
+        wanted += [configuration(o) for o in SETS[s]]
+    for c in wanted:
+        n = name(c)
+        if n in results:
+            continue
+        print(f'[{n}] running', flush=True)
+        results[n] = measure(arguments.work, c)
+        r = results[n]
+        print(f'[{n}] exit {r["status"]}, {r["wall_s"]:.0f} s' +
+              (f', P_max {r["P_max_nN"]:.3f} nN' if r['status'] == 0 else ''), flush=True)
+        save(path, results)
+    ref = reference(results)
+    if ref is None:
+        print('reference runs incomplete: no errors computed')
+        return 1
+    for r in results.values():
+        if r.get('status') == 0:
+            pull, moment = errors(r, ref)
+            print(f'{r["name"]:60s} {r["wall_s"]:7.0f} s  pull-off error {100 * pull:6.2f} %  M_y error {100 * moment:6.2f} %')
+    if arguments.docs:
+        document(results, ref, arguments.work)
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
