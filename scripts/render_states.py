@@ -2,9 +2,10 @@
 spatula (the half mesh and its mirror image) per state, coloured by the first stress invariant I1 = tr(sigma) / E, like the paper's Figs. 5 and 7.
 The states' times are the load parameter (theta_y in degrees for a rotation, u_z in nm for a lift). Headless:
 
-    scripts/render.sh scripts/render_states.py <output-dir>/mesh_states.xmf <picture.png> [time ...]
+    scripts/render.sh scripts/render_states.py <output-dir>/mesh_states.xmf <picture.png> [--bottom] [time ...]
 
-Without times, up to four states spread over the run are drawn; with times, the states nearest to them.
+Without times, up to four states spread over the run are drawn; with times, the states nearest to them. --bottom
+adds a view of the pad from below under each side view.
 """
 import os
 import sys
@@ -17,14 +18,16 @@ from PIL import Image
 
 _DisableFirstRenderCameraReset()
 
-xmf, png = os.path.abspath(sys.argv[1]), sys.argv[2]  # the reader resolves mesh.h5 from an absolute path only
+arguments = [a for a in sys.argv[1:] if a != '--bottom']
+bottom = '--bottom' in sys.argv
+xmf, png = os.path.abspath(arguments[0]), arguments[1]  # the reader resolves mesh.h5 from an absolute path only
 reader = Xdmf3ReaderS(FileName=[xmf])
 reader.UpdatePipelineInformation()
 times = list(reader.TimestepValues) if hasattr(reader.TimestepValues, '__len__') else [reader.TimestepValues]
 if not times:
     sys.exit(f'{xmf}: no states')
-if len(sys.argv) > 3:
-    chosen = [min(times, key=lambda t: abs(t - float(wanted))) for wanted in sys.argv[3:]]
+if len(arguments) > 2:
+    chosen = [min(times, key=lambda t: abs(t - float(wanted))) for wanted in arguments[2:]]
 else:
     count = min(4, len(times))
     chosen = [times[round(i * (len(times) - 1) / max(count - 1, 1))] for i in range(count)]
@@ -36,9 +39,10 @@ for time in chosen:  # one symmetric colour scale for all panels
 largest *= 0.5  # a few elements at the pad's bend carry the extremes; saturate them to show the rest
 
 width, height = 1400, 520
-pictures = []
-for time in chosen:
-    full.UpdatePipeline(time)
+
+
+def panel(time, title, direction, up, focus, scale):
+    """One view of the deformed state at `time` looking along `direction`."""
     view = CreateView('RenderView')
     view.ViewSize = [width, height]
     view.ViewTime = time
@@ -58,21 +62,30 @@ for time in chosen:
     bar = GetScalarBar(lookup, view)
     bar.Title, bar.ComponentTitle = 'I1', ''
     bar.TitleColor = bar.LabelColor = [0, 0, 0]
-    label = Text(Text=f'state at load parameter {time:.2f}   (side view from -Y, colour: I1 = tr(sigma) / E)')
+    label = Text(Text=f'state at load parameter {time:.2f}   ({title}, colour: I1 = tr(sigma) / E)')
     label_display = Show(label, view)
     label_display.Color = [0, 0, 0]
     label_display.FontSize = 14
-    bounds = full.GetDataInformation().GetBounds()
-    centre = [(bounds[0] + bounds[1]) / 2, 0.0, (bounds[4] + bounds[5]) / 2]
-    view.CameraViewUp = [0, 0, 1]
+    view.CameraViewUp = list(up)
     view.CameraParallelProjection = 1
-    view.CameraFocalPoint = centre
-    view.CameraPosition = [centre[0], centre[1] - 4000, centre[2]]
-    view.CameraParallelScale = 0.6 * max(bounds[5] - bounds[4], (bounds[1] - bounds[0]) * height / width)
+    view.CameraFocalPoint = list(focus)
+    view.CameraPosition = [focus[i] + 4000 * direction[i] for i in range(3)]
+    view.CameraParallelScale = scale
     Render(view)
     picture = os.path.join(tempfile.mkdtemp(), 'view.png')
     SaveScreenshot(picture, view, ImageResolution=[width, height])
-    pictures.append(Image.open(picture))
+    return Image.open(picture)
+
+
+pictures = []
+for time in chosen:
+    full.UpdatePipeline(time)
+    bounds = full.GetDataInformation().GetBounds()
+    centre = [(bounds[0] + bounds[1]) / 2, 0.0, (bounds[4] + bounds[5]) / 2]
+    scale = 0.6 * max(bounds[5] - bounds[4], (bounds[1] - bounds[0]) * height / width)
+    pictures.append(panel(time, 'side view from -Y', (0, -1, 0), (0, 0, 1), centre, scale))
+    if bottom:   # the pad from below: where it adheres (the paper's lower rows of Figs. 7, 11, 14)
+        pictures.append(panel(time, 'pad from below, -Z', (0, 0, -1), (0, -1, 0), (120.0, 0.0, 0.0), 145.0))
 
 sheet = Image.new('RGB', (width, height * len(pictures)), 'white')
 for i, picture in enumerate(pictures):
