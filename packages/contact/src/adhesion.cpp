@@ -42,6 +42,9 @@ void AdhesionParameters::declare(Teuchos::ParameterList& adhesion)
                              "r_reg / r_eq: below r_reg the traction continues linearly (C1)", {0.0, 1.0, true, false});
   parameters::declare_double(adhesion, "cut-off", 10.0, "gap beyond which the traction is neglected [nm]",
                              Range::positive());
+  parameters::declare_bool(adhesion, "skip distant faces", true,
+                           "leave out faces whose every point is beyond the cut-off (false: integrate every face; "
+                           "for measuring what the skip saves)");
   auto& rough = parameters::declare_sublist(adhesion, "Rough Substrate", "Gaussian asperities on a triangular grid");
   parameters::declare_double(rough, "z0", 4.0, "asperity height [nm]", Range::non_negative());
   parameters::declare_double(rough, "h", 20.0, "asperity width [nm]", Range::positive());
@@ -61,6 +64,7 @@ AdhesionParameters AdhesionParameters::from(const Teuchos::ParameterList& adhesi
   s.substrate = adhesion.get<std::string>("substrate");
   s.enrichment = discretization::enrichment_from_name(adhesion.get<std::string>("enrichment"));
   s.quadrature = adhesion.get<int>("quadrature");
+  s.skip_distant_faces = adhesion.get<bool>("skip distant faces");
   auto& lj = s.lennard_jones;
   if (adhesion.get<std::string>("specification") == "physical") {
     lj.hamaker = 0.1 * adhesion.get<double>("A_H");   // 1e-19 J = 0.1 nN nm

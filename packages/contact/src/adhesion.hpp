@@ -25,6 +25,7 @@ struct AdhesionSettings {
   laws::RoughSubstrate rough;          // z0, h, lambda (base set from r_eq: asperity tops at -r_eq)
   double substrate_height = 0.0;       // flat: the plane z = -r_eq, so the undeformed pad is traction-free
   bool conform = false;                // rough: start from the pad pressed onto the asperities
+  bool skip_distant_faces = true;      // integrate only faces with a point within the cut-off
 
   double gamma_W(double young) const;
   double gamma_L() const { return 1.0 / lennard_jones.r0; }

@@ -21,7 +21,8 @@ std::string describe(const AdhesionSettings& s)
          " nm, r_reg = " + std::to_string(s.lennard_jones.r_reg) + " nm, r_cut = " +
          std::to_string(s.lennard_jones.r_cut) + " nm), " +
          (s.enrichment == discretization::Enrichment::q1c2 ? "Q1C2" : "Q1C1") + ", " + std::to_string(s.quadrature) +
-         "x" + std::to_string(s.quadrature) + " points per face";
+         "x" + std::to_string(s.quadrature) + " points per face" +
+         (s.skip_distant_faces ? "" : ", every face integrated");
 }
 
 std::shared_ptr<const discretization::ContactModel> frictionless(const AdhesionSettings& s)
@@ -29,10 +30,12 @@ std::shared_ptr<const discretization::ContactModel> frictionless(const AdhesionS
   const double w = s.lennard_jones.work_of_adhesion();
   if (s.substrate == "flat") {
     elements::FrictionlessIntegrand<laws::FlatSubstrate> integrand{s.lennard_jones, {s.substrate_height}};
-    return std::make_shared<IntegrandContactModel<decltype(integrand)>>(integrand, s.quadrature, describe(s), w);
+    return std::make_shared<IntegrandContactModel<decltype(integrand)>>(integrand, s.quadrature, describe(s), w,
+                                                                        s.skip_distant_faces);
   }
   elements::FrictionlessIntegrand<laws::RoughSubstrate> integrand{s.lennard_jones, s.rough};
-  return std::make_shared<IntegrandContactModel<decltype(integrand)>>(integrand, s.quadrature, describe(s), w);
+  return std::make_shared<IntegrandContactModel<decltype(integrand)>>(integrand, s.quadrature, describe(s), w,
+                                                                        s.skip_distant_faces);
 }
 
 std::shared_ptr<const discretization::ContactModel> stiction(const AdhesionSettings& s)
@@ -42,7 +45,8 @@ std::shared_ptr<const discretization::ContactModel> stiction(const AdhesionSetti
                                  s.substrate + "'): tangential travel on a curved substrate is not defined");
   elements::StictionIntegrand integrand{{s.lennard_jones, s.substrate_height}};
   return std::make_shared<IntegrandContactModel<decltype(integrand)>>(integrand, s.quadrature, describe(s),
-                                                                      s.lennard_jones.work_of_adhesion());
+                                                                      s.lennard_jones.work_of_adhesion(),
+                                                                      s.skip_distant_faces);
 }
 
 }  // namespace

@@ -192,6 +192,28 @@ TEST(Adhesion, FacesBeyondTheCutOffAreSkippedButKeepTheirEnergy)
   EXPECT_NEAR(far.contact_energy, phi_cut * system->contact_area(), 1e-12);
 }
 
+TEST(Adhesion, SkippingDistantFacesChangesNothingButTheWork)
+{
+  Spatula spatula;
+  auto s = settings(discretization::Enrichment::q1c2);
+  auto skipping = spatula.system(s, Teuchos::DefaultComm<int>::getComm());
+  s.skip_distant_faces = false;
+  auto every = spatula.system(s, Teuchos::DefaultComm<int>::getComm());
+  std::vector<double> u(3 * spatula.mesh.node_count(), 0.0);
+  for (std::int64_t n = 0; n < spatula.mesh.node_count(); ++n)   // a peel: the pad beyond X = 150 nm rises
+    u[3 * n + 2] = std::max(0.0, 0.2 * (spatula.mesh.coordinates[n][0] - 150.0));
+  auto xa = skipping->create_vector(), xb = every->create_vector();
+  skipping->set_displacements(*xa, u);
+  every->set_displacements(*xb, u);
+  auto fa = skipping->create_vector(), fb = every->create_vector();
+  const auto a = skipping->evaluate(*xa, fa.get(), true), b = every->evaluate(*xb, fb.get(), true);
+  EXPECT_GT(a.skipped_contact_faces, 0);
+  EXPECT_EQ(b.skipped_contact_faces, 0);
+  EXPECT_NEAR(a.contact_energy, b.contact_energy, 1e-12 * std::abs(b.contact_energy));
+  fa->update(-1.0, *fb, 1.0);
+  EXPECT_LE(fa->norm2(), 1e-12 * fb->norm2());
+}
+
 namespace {
 
 // A test-only law: a linear spring holding each surface point at the equilibrium gap, phi = k/2 (d - r_eq)^2.

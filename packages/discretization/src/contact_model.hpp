@@ -47,6 +47,7 @@ struct ContactKernel {
   ContactFaceViews faces;
   Integrand integrand;
   int order = 4;
+  bool skip_distant = true;
 
   KOKKOS_INLINE_FUNCTION void init(value_type sums) const
   {
@@ -76,7 +77,7 @@ struct ContactKernel {
       farthest = bound > farthest ? bound : farthest;
     }
     // Skip a face whose every point is beyond the cut-off (with a margin for the quadratic interpolation).
-    if (nearest - 0.5 * (farthest - nearest) > integrand.cut_off()) {
+    if (skip_distant && nearest - 0.5 * (farthest - nearest) > integrand.cut_off()) {
       double phi, gradient[3];
       double x_far[3] = {0.0, 0.0, 1e300};
       integrand.evaluate(X[0], x_far, phi, gradient, nullptr);
@@ -97,8 +98,10 @@ struct ContactKernel {
 template <class Integrand>
 class IntegrandContactModel : public ContactModel {
 public:
-  IntegrandContactModel(Integrand integrand, int order, std::string description, double work_of_adhesion)
-      : integrand_(integrand), order_(order), description_(std::move(description)), work_(work_of_adhesion)
+  IntegrandContactModel(Integrand integrand, int order, std::string description, double work_of_adhesion,
+                        bool skip_distant_faces = true)
+      : integrand_(integrand), order_(order), description_(std::move(description)), work_(work_of_adhesion),
+        skip_distant_(skip_distant_faces)
   {
   }
   std::string description() const override { return description_; }
@@ -110,10 +113,10 @@ public:
     double sums[3] = {0.0, 0.0, 0.0};
     const auto policy = Kokkos::RangePolicy<execution_space>(0, faces.count);
     if (faces.face_nodes == 9) {
-      detail::ContactKernel<elements::Quad9Surface, Integrand> kernel{3, scatter, faces, integrand_, order_};
+      detail::ContactKernel<elements::Quad9Surface, Integrand> kernel{3, scatter, faces, integrand_, order_, skip_distant_};
       Kokkos::parallel_reduce("spatula: contact Q1C2 faces", policy, kernel, sums);
     } else {
-      detail::ContactKernel<elements::Quad4Surface, Integrand> kernel{3, scatter, faces, integrand_, order_};
+      detail::ContactKernel<elements::Quad4Surface, Integrand> kernel{3, scatter, faces, integrand_, order_, skip_distant_};
       Kokkos::parallel_reduce("spatula: contact Q1C1 faces", policy, kernel, sums);
     }
     ContactTotals totals;
@@ -129,6 +132,7 @@ private:
   int order_;
   std::string description_;
   double work_;
+  bool skip_distant_;
 };
 
 }  // namespace spatula::discretization
