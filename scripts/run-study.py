@@ -191,15 +191,29 @@ def plots(work, summaries, directory):
     pictures = []
     if os.path.exists(os.path.join(work, 'peel-rotation', 'curve.csv')):
         rows = read_curve(work, 'peel-rotation')
-        fig, axis = plt.subplots(figsize=(7, 4))
-        axis.plot([r['theta_y_deg'] for r in rows], [r['M_y_per_ER0^3'] for r in rows], '.-', markersize=2)
+        fig, (axis, energy) = plt.subplots(1, 2, figsize=(12, 4.2))
+        theta = [r['theta_y_deg'] for r in rows]
+        axis.plot(theta, [r['M_y_per_ER0^3'] for r in rows], '.-', markersize=2)
         axis.set_xlabel('theta_y [deg]')
         axis.set_ylabel('M_y / (E R0^3)')
-        axis.set_title('Peeling by rotation (cf. paper Fig. 6)')
+        axis.set_title('Moment (cf. paper Fig. 6)')
+        axis.grid(alpha=0.3)
+        for key, label, colour, column in (('Pi_ext_per_Pi_c0', 'Pi_ext', 'tab:blue', 0),
+                                           ('Pi_int_per_Pi_c0', 'Pi_int', 'tab:orange', 1),
+                                           ('Pi_sa_per_Pi_c0', 'Pi_sa', 'tab:green', 2)):
+            energy.plot(theta, [r[key] for r in rows], '-', color=colour, label=label + ' (ours)')
+            paper = [(31.0 if k in ('31-', '31+') else k, v[column]) for k, v in PAPER_TABLE4.items()]
+            energy.plot([a for a, _ in paper], [v for _, v in paper], 'o', color=colour, markerfacecolor='none',
+                        label=label + ' (paper, Table 4)')
+        energy.set_xlabel('theta_y [deg]')
+        energy.set_ylabel('energy / Pi_c0')
+        energy.set_title('Energies (cf. paper Table 4)')
+        energy.legend(fontsize=7)
+        energy.grid(alpha=0.3)
         fig.tight_layout()
         name = 'validation-fig6-moment.png'
         fig.savefig(os.path.join(directory, name), dpi=110)
-        pictures.append(name)
+        pictures.append((name, 'Peeling by rotation: moment and energies against inclination (cf. paper Fig. 6, Table 4)'))
     groups = (('validation-fig8-pull-off.png', 'Pull-off at fixed inclination (cf. paper Fig. 8)',
                [(f'pull-off-{t}', f'{t} deg') for t in (45, 60, 75, 90)]),
               ('validation-fig9-stiction.png', 'Stiction vs frictionless at 60 deg (cf. paper Fig. 9)',
@@ -222,8 +236,38 @@ def plots(work, summaries, directory):
         axis.legend()
         fig.tight_layout()
         fig.savefig(os.path.join(directory, name), dpi=110)
-        pictures.append(name)
+        pictures.append((name, title))
     return pictures
+
+
+# Field pictures (ParaView, headless): scene, states' load parameters, file name, caption.
+FIELD_PICTURES = (
+    ('peel-rotation', (30, 33, 60, 90, 120), 'validation-fig5-peel-states.png',
+     'Peeling by rotation (cf. paper Figs. 5 and 7): deformed states near the given theta_y, side view and the pad from '
+     'below, coloured by I1 = tr(sigma)/E (fields are written every 10 steps: the states nearest to the angles)'),
+    ('pull-off-60', (), 'validation-fig7-pull-off-60-states.png',
+     'Pull-off at 60 deg (cf. paper Fig. 7): states over the lift (load parameter u_z [nm])'),
+    ('rough-z0-0', (45,), 'validation-fig14-rough-z0-0.png', 'Flat substrate through the rough-substrate code (z0 = 0), 45 deg'),
+    ('rough-z0-4', (45,), 'validation-fig14-rough-z0-4.png', 'Rough substrate z0 = 4 nm, 45 deg (cf. paper Fig. 14)'),
+    ('rough-z0-8', (45,), 'validation-fig14-rough-z0-8.png', 'Rough substrate z0 = 8 nm, 45 deg (cf. paper Fig. 14)'),
+)
+
+
+def field_pictures(work, directory):
+    """Renders FIELD_PICTURES of the runs present; returns (file, caption) pairs."""
+    if not shutil.which('pvbatch') or not shutil.which('xvfb-run'):
+        print('pvbatch/xvfb-run not installed: no field pictures')
+        return []
+    out = []
+    for scene, times, name, caption in FIELD_PICTURES:
+        states = os.path.join(work, scene, 'mesh_states.xmf')
+        if not os.path.exists(states):
+            continue
+        command = ['bash', os.path.join(ROOT, 'scripts', 'render.sh'), os.path.join(ROOT, 'scripts', 'render_states.py'),
+                   states, os.path.join(directory, name), '--bottom'] + [str(t) for t in times]
+        if subprocess.call(command) == 0:
+            out.append((name, caption))
+    return out
 
 
 def main():
@@ -245,10 +289,11 @@ def main():
     if arguments.docs:
         docs = os.path.join(ROOT, 'docs')
         pictures = plots(arguments.work, summaries, docs)
+        pictures += field_pictures(arguments.work, docs)
         template = open(os.path.join(ROOT, 'docs', 'validation-notes.md')).read()
         with open(os.path.join(docs, 'validation.md'), 'w') as out:
             out.write(template.replace('{{TABLES}}', text).replace(
-                '{{FIGURES}}', '\n\n'.join(f'![{p}]({p})' for p in pictures)))
+                '{{FIGURES}}', '\n\n'.join(f'{caption}:\n\n![{caption}]({name})' for name, caption in pictures)))
         print('wrote docs/validation.md')
     return 1 if failed else 0
 
