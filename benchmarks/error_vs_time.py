@@ -5,27 +5,37 @@ over mesh level x Q1C1/Q1C2 x contact quadrature x linear solver x MPI ranks x s
     benchmarks/error_vs_time.py [--set grid refinement solvers ...] [--work DIR] [--docs]
 
 Measured per run: P_max, Delta u_z and Delta Pi_ext of the pull-off, M_y at theta_y = 15, 20, 25 deg (the smooth part
-of the moment curve), and the wall time (rotation, lift, total; one run at a time, so timings are not disturbed).
-Reference: Richardson extrapolation over the in-plane refinement k = 1, 2, 4 (coarse, coarse with refinement factor
-2, medium; Q1C2, 6x6 points), with the observed order; the errors of every run are relative to it. Results:
+of the moment curve), the wall time (rotation, lift, total; one run at a time) and the CPU time of the run's
+processes (all ranks). Time is plotted as CPU seconds: that stays meaningful when the machine is shared with other
+runs, which wall time does not. Reference: Richardson extrapolation over the in-plane refinement k = 1, 2, 4 (coarse,
+coarse with refinement factor 2, medium; Q1C2, 6x6 points), with the observed order; the errors of every run are
+relative to it. `--medium-from DIR` takes the k = 4 point from a study's medium runs (DIR/peel-rotation and
+DIR/pull-off-60 of scripts/run-study.py, which differ from the benchmark's scene only in reusing factorizations,
+lag 4) instead of running it again (about 25 minutes); its time is then that study's wall time. Results:
 <work>/results.csv, and with --docs docs/error-vs-time.md and docs/error-vs-time.png (error against time with the
-Pareto front). Runs already in <work>/results.csv are not repeated.
+Pareto front), and docs/error-vs-time.csv (every configuration's values and errors). Runs already in
+<work>/results.csv are not repeated.
+
+`--check NAME` (CI) runs one configuration in a fresh work directory and compares it with its row in
+docs/error-vs-time.csv: the quantities must agree to 0.2 % and the error against the stored reference must be the
+recorded one within 0.2 percentage points. SPATULA_APP overrides the app's path.
 """
 import argparse
 import csv
 import math
 import os
+import resource
 import subprocess
 import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-APP = os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula')
+APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula'))
 sys.path.insert(0, os.path.join(ROOT, 'scripts'))
 from curves import interpolate, pull_off_summary, read_curve  # noqa: E402
 
 DEFAULT = dict(level='coarse', refinement=1, enrichment='Q1C2', quadrature=6, solver='mumps', lag=0, ranks=1,
-               rotation_maximum=2.0, lift_maximum=5.0)
+               rotation_maximum=2.0, lift_maximum=5.0, skip=True, substrate='flat', fields=-1)
 SETS = {
     # mesh level x enrichment x contact quadrature on the coarse mesh
     'grid': [dict(enrichment=e, quadrature=q) for e in ('Q1C1', 'Q1C2') for q in (2, 3, 4, 6)],
@@ -37,6 +47,12 @@ SETS = {
                 dict(refinement=2, rotation_maximum=4.0, lift_maximum=10.0),
                 dict(refinement=2, rotation_maximum=1.0, lift_maximum=2.5)],
     'medium-solvers': [dict(level='medium', lag=4), dict(level='medium', ranks=2, lag=4)],
+    # what each skip saves, on the coarse mesh: the cut-off skip off, the flat substrate through the rough-substrate
+    # code (z0 = 0: projection and curvature terms evaluated), fields written at every step / first and last only
+    # (fields=-1, the default here, writes none)
+    # reusing a factorization for up to 4 Newton iterations
+    'lag': [dict(lag=4), dict(refinement=2, lag=4)],
+    'skips': [dict(skip=False), dict(substrate='rough0'), dict(fields=1), dict(fields=0)],
 }
 REFERENCE = [dict(), dict(refinement=2), dict(level='medium')]
 MOMENT_ANGLES = (15.0, 20.0, 25.0)
@@ -53,10 +69,19 @@ def name(c):
     parts = [c['level'] + (f'x{c["refinement"]}' if c['refinement'] > 1 else ''), c['enrichment'], f'q{c["quadrature"]}',
              c['solver'] + (f'-lag{c["lag"]}' if c['lag'] else ''), f'np{c["ranks"]}',
              f'steps{c["rotation_maximum"]:g}-{c["lift_maximum"]:g}']
+    if not c['skip']:
+        parts.append('noskip')
+    if c['substrate'] != 'flat':
+        parts.append(c['substrate'])
+    if c['fields'] >= 0:
+        parts.append(f'fields{c["fields"]}')
     return '_'.join(parts)
 
 
 def scene(c, directory):
+    substrate = ('<Parameter name="substrate" type="string" value="rough"/>'
+                 '<ParameterList name="Rough Substrate"><Parameter name="z0" type="double" value="0"/></ParameterList>'
+                 if c['substrate'] == 'rough0' else '')
     return f'''<ParameterList name="{directory}">
   <ParameterList name="Mesh"><Parameter name="level" type="string" value="{c['level']}"/>
     <Parameter name="refinement factor" type="int" value="{c['refinement']}"/></ParameterList>
@@ -64,6 +89,8 @@ def scene(c, directory):
     <Parameter name="law" type="string" value="frictionless"/>
     <Parameter name="enrichment" type="string" value="{c['enrichment']}"/>
     <Parameter name="quadrature" type="int" value="{c['quadrature']}"/>
+    <Parameter name="skip distant faces" type="bool" value="{str(c['skip']).lower()}"/>
+    {substrate}
   </ParameterList>
   <ParameterList name="Loading">
     <Parameter name="type" type="string" value="lift"/>
@@ -78,7 +105,8 @@ def scene(c, directory):
   <ParameterList name="Linear Solver"><Parameter name="type" type="string" value="{c['solver']}"/>
     <Parameter name="lag" type="int" value="{c['lag']}"/></ParameterList>
   <ParameterList name="Output"><Parameter name="directory" type="string" value="{directory}"/>
-    <Parameter name="write mesh" type="bool" value="false"/></ParameterList>
+    <Parameter name="write mesh" type="bool" value="{str(c['fields'] >= 0).lower()}"/>
+    <Parameter name="field interval" type="int" value="{max(c['fields'], 0)}"/></ParameterList>
 </ParameterList>
 '''
 
@@ -92,10 +120,13 @@ def measure(work, c):
         command = ['mpirun', '--allow-run-as-root', '-np', str(c['ranks'])] + command
     environment = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
     started = time.time()
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     with open(os.path.join(work, directory + '.log'), 'w') as log:
         status = subprocess.call(command, cwd=work, stdout=log, stderr=subprocess.STDOUT, env=environment)
     wall = time.time() - started
-    row = dict(c, name=directory, status=status, wall_s=round(wall, 1))
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime
+    row = dict(c, name=directory, status=status, wall_s=round(wall, 1), cpu_s=round(cpu, 1))
     if status != 0:
         return row
     rows = read_curve(work, directory)
@@ -112,12 +143,31 @@ def measure(work, c):
     return row
 
 
+def from_study(directory):
+    """The k = 4 reference point from a study's medium peel-rotation (to 60 deg) and pull-off-60 runs."""
+    c = configuration(dict(level='medium'))
+    rotation = [r for r in read_curve(directory, 'peel-rotation') if r['theta_y_deg'] <= 60.0 + 1e-9]
+    lift = read_curve(directory, 'pull-off-60')
+    row = dict(c, name=name(c), status=0, rotation_s=round(rotation[-1]['wall_s'], 1),
+               lift_s=round(lift[-1]['wall_s'], 1))
+    row['wall_s'] = row['cpu_s'] = round(row['rotation_s'] + row['lift_s'], 1)
+    row['newton_iterations'] = int(sum(r['newton_iterations'] for r in rotation + lift))
+    summary = pull_off_summary(directory, 'pull-off-60')
+    for q in QUANTITIES:
+        row[q] = summary[q]
+    for angle in MOMENT_ANGLES:
+        row[f'M_y_{angle:g}'] = interpolate(rotation, 'theta_y_deg', angle, ['M_y_nNnm'])['M_y_nNnm']
+    row['worst_balance'] = summary['worst_balance_error']
+    row['source'] = f'study {directory}'
+    return row
+
+
 def load(path):
     if not os.path.exists(path):
         return {}
     out = {}
     for r in csv.DictReader(open(path)):
-        out[r['name']] = {k: (v if k in ('name', 'level', 'enrichment', 'solver') else float(v) if v else None)
+        out[r['name']] = {k: (v if k in ('name', 'level', 'enrichment', 'solver', 'source', 'substrate') else float(v) if v else None)
                           for k, v in r.items()}
     return out
 
@@ -167,7 +217,9 @@ def document(results, ref, work):
     done = [r for r in results.values() if r.get('status') == 0]
     lines = ['# Run time against error: pull-off at 60°', '',
              'Written by `benchmarks/error_vs_time.py --docs` (see its header for what is measured); numbers from one '
-             'run of each configuration on this 2-core machine, one run at a time.', '',
+             'run of each configuration on this 2-core machine, one run at a time. Time is the CPU time of the run '
+             '(all its processes): the machine ran other jobs at the same time, so wall times are longer and vary. '
+             'A row whose source is a study took its time from that study\'s wall clock.', '',
              '## Reference (Richardson extrapolation over k = 1, 2, 4; Q1C2, 6 × 6 points)', '',
              '| quantity | k = 1 | k = 2 | k = 4 | extrapolated | observed order | uncertainty |', '|---|---|---|---|---|---|---|']
     names = [name(configuration(o)) for o in REFERENCE]
@@ -175,13 +227,14 @@ def document(results, ref, work):
         values = ' | '.join(f'{results[n][key]:.4g}' for n in names)
         lines.append(f'| {key} | {values} | {limit:.4g} | {order:.2f} | {uncertainty:.2g} |')
     lines += ['', '## Every configuration', '',
-              '| configuration | wall [s] | rotation [s] | lift [s] | Newton its | P_max [nN] | Δu_z [nm] | ΔΠ_ext | '
-              'pull-off error | M_y error | worst balance |', '|---|---|---|---|---|---|---|---|---|---|---|']
+              '| configuration | CPU [s] | wall [s] | Newton its | P_max [nN] | Δu_z [nm] | ΔΠ_ext | '
+              'pull-off error | M_y error | worst balance |', '|---|---|---|---|---|---|---|---|---|---|']
     points = []
-    for r in sorted(done, key=lambda r: r['wall_s']):
+    for r in sorted(done, key=lambda r: r['cpu_s']):
         pull, moment = errors(r, ref)
-        points.append((r['wall_s'], max(pull, moment), r['name']))
-        lines.append(f'| {r["name"]} | {r["wall_s"]:.0f} | {r["rotation_s"]:.0f} | {r["lift_s"]:.0f} | '
+        points.append((r['cpu_s'], max(pull, moment), r['name']))
+        label = r['name'] + (f' ({r["source"]})' if r.get('source') else '')
+        lines.append(f'| {label} | {r["cpu_s"]:.0f} | {r["wall_s"]:.0f} | '
                      f'{r["newton_iterations"]:.0f} | {r["P_max_nN"]:.3f} | {r["delta_u_z_nm"]:.1f} | '
                      f'{r["delta_Pi_ext_1e-18J"]:.0f} | {100 * pull:.2f} % | {100 * moment:.2f} % | '
                      f'{r["worst_balance"]:.1e} |')
@@ -195,8 +248,8 @@ def document(results, ref, work):
             front.append((wall, error, label))
             best = error
     lines += ['', '## Pareto front (no configuration is both faster and more accurate)', '',
-              '| configuration | wall [s] | largest error |', '|---|---|---|']
-    lines += [f'| {label} | {wall:.0f} | {100 * error:.2f} % |' for wall, error, label in front]
+              '| configuration | CPU [s] | largest error |', '|---|---|---|']
+    lines += [f'| {label} | {cpu:.0f} | {100 * error:.2f} % |' for cpu, error, label in front]
     within = [p for p in points if p[1] <= 0.01]
     if within:
         fastest = min(within)
@@ -210,31 +263,84 @@ def document(results, ref, work):
         axis.annotate(label.replace('_', ' '), (wall, 100 * error), fontsize=6, xytext=(3, 3), textcoords='offset points')
     axis.loglog([p[0] for p in front], [100 * p[1] for p in front], '-', color='tab:red', label='Pareto front')
     axis.axhline(1.0, color='grey', linestyle='--', label='1 %')
-    axis.set_xlabel('wall time, rotation to 60° + pull-off [s]')
+    axis.set_xlabel('CPU time, rotation to 60° + pull-off [s]')
     axis.set_ylabel('largest relative error (P_max, Δu_z, ΔΠ_ext, M_y) [%]')
     axis.legend()
     axis.grid(alpha=0.3, which='both')
     figure.tight_layout()
     figure.savefig(os.path.join(ROOT, 'docs', 'error-vs-time.png'), dpi=110)
-    lines += ['', '![error against wall time](error-vs-time.png)', '']
+    lines += ['', '![error against CPU time](error-vs-time.png)', '']
     open(os.path.join(ROOT, 'docs', 'error-vs-time.md'), 'w').write('\n'.join(lines))
     print('wrote docs/error-vs-time.md and docs/error-vs-time.png')
+
+
+def check(configuration_name, work):
+    """Runs one recorded configuration again and compares it with docs/error-vs-time.csv; returns the exit code."""
+    recorded = load(os.path.join(ROOT, 'docs', 'error-vs-time.csv'))
+    if configuration_name not in recorded or 'reference' not in recorded:
+        sys.exit(f'docs/error-vs-time.csv has no row "{configuration_name}" (or no reference row); '
+                 f'rows: {", ".join(recorded)}')
+    c = next(configuration(o) for group in [REFERENCE] + list(SETS.values()) for o in group
+             if name(configuration(o)) == configuration_name)
+    os.makedirs(work, exist_ok=True)
+    row = measure(work, c)
+    if row['status'] != 0:
+        print(f'{configuration_name}: the run failed (exit {row["status"]}); log in {work}')
+        return 1
+    ref = {k: (v, 0, 0) for k, v in recorded['reference'].items() if k in list(QUANTITIES) + [f'M_y_{a:g}' for a in MOMENT_ANGLES]}
+    ok = True
+    for key in ref:
+        was, now = recorded[configuration_name][key], row[key]
+        good = abs(now / was - 1.0) <= 2e-3
+        ok &= good
+        print(f'{key:22s} recorded {was:12.5g}  now {now:12.5g}  reference {ref[key][0]:12.5g}  '
+              f'{"ok" if good else "DIFFERS"}')
+    pull, moment = errors(row, ref)
+    for label, now, was in (('pull-off error', pull, recorded[configuration_name]['pull_off_error']),
+                            ('M_y error', moment, recorded[configuration_name]['moment_error'])):
+        good = abs(now - was) <= 2e-3
+        ok &= good
+        print(f'{label:22s} recorded {100 * was:6.2f} %  now {100 * now:6.2f} %  {"ok" if good else "DIFFERS"}')
+    print(f'{configuration_name}: {row["cpu_s"]:.0f} s CPU; {"agrees with" if ok else "DIFFERS FROM"} docs/error-vs-time.csv')
+    return 0 if ok else 1
+
+
+def record(results, ref):
+    """docs/error-vs-time.csv: the reference and every configuration's values and errors."""
+    keys = list(QUANTITIES) + [f'M_y_{a:g}' for a in MOMENT_ANGLES]
+    rows = {'reference': dict(name='reference', **{k: ref[k][0] for k in keys})}
+    for r in results.values():
+        if r.get('status') == 0:
+            pull, moment = errors(r, ref)
+            rows[r['name']] = dict(name=r['name'], cpu_s=r['cpu_s'], wall_s=r['wall_s'],
+                                   **{k: r[k] for k in keys}, pull_off_error=pull, moment_error=moment)
+    save(os.path.join(ROOT, 'docs', 'error-vs-time.csv'), rows)
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument('--set', nargs='*', default=['grid', 'refinement', 'solvers'], choices=sorted(SETS))
     parser.add_argument('--work', default=os.path.join(ROOT, 'benchmark-output', 'error-vs-time'))
+    parser.add_argument('--medium-from', help='a study directory with peel-rotation and pull-off-60 on the medium mesh')
     parser.add_argument('--docs', action='store_true')
+    parser.add_argument('--check', metavar='NAME', help='run one configuration and compare it with docs/error-vs-time.csv')
     arguments = parser.parse_args()
     if not os.path.exists(APP):
         sys.exit(f'{APP} not found: build first (bash scripts/build.sh)')
+    if arguments.check:
+        return check(arguments.check, arguments.work)
     os.makedirs(arguments.work, exist_ok=True)
     path = os.path.join(arguments.work, 'results.csv')
     results = load(path)
     wanted = [configuration(o) for o in REFERENCE]
+    if arguments.medium_from:
+        row = from_study(arguments.medium_from)
+        results[row['name']] = row
+        save(path, results)
     for s in arguments.set:
         wanted += [configuration(o) for o in SETS[s]]
+    # cheapest first: the medium mesh last, then the refined coarse mesh
+    wanted.sort(key=lambda c: (c['level'] == 'medium', c['refinement']))
     for c in wanted:
         n = name(c)
         if n in results:
@@ -255,6 +361,7 @@ def main():
             print(f'{r["name"]:60s} {r["wall_s"]:7.0f} s  pull-off error {100 * pull:6.2f} %  M_y error {100 * moment:6.2f} %')
     if arguments.docs:
         document(results, ref, arguments.work)
+        record(results, ref)
     return 0
 
 

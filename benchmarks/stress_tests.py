@@ -3,15 +3,17 @@
 (or its final load) or stop with a clear diagnosis (which step, which quantity, why). Never a NaN in the output,
 never a hang, never a silently wrong curve (the energy balance error is checked at every state).
 
-    benchmarks/stress_tests.py [--jobs 2] [--work stress-output] [--only NAME ...] [--docs] [--time-limit 1200]
+    benchmarks/stress_tests.py [--jobs 2] [--work stress-output] [--only NAME ...] [--again] [--docs] [--time-limit 1200]
 
 Cases (coarse mesh, Q1C2, pull-off at 60 deg unless said): gamma_W / gamma_W0 = 1.5^-2 .. 1.5^3, gamma_L / gamma_L0 =
 1.5^-3 .. 1.5^2, rough substrate z0 = 8 and 10 nm (rotation to 45 deg), step-size maxima x4, Q1C1 (rotation to
 140 deg and pull-off). With --docs the outcome matrix goes to docs/stability.md (the page's text is the template
-docs/stability-notes.md). The same script with --only runs single cases (CI runs one cheap one).
+docs/stability-notes.md). The same script with --only runs single cases (CI runs one cheap one). Outcomes are kept
+in <work>/outcomes.json; a case already there is not run again unless --again is given.
 """
 import argparse
 import csv
+import json
 import math
 import os
 import subprocess
@@ -19,7 +21,7 @@ import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-APP = os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula')
+APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula'))
 GAMMA_W0, GAMMA_L0 = 25.266, 2.5
 BALANCE_LIMIT = 2e-3   # the paper's bound on |Pi_ext - Pi_int - Pi_sa - D| / Pi_c0
 
@@ -112,7 +114,7 @@ def classify(work, name, status, log_text, seconds, time_limit):
             'last': where, 'P_max': peak, 'balance': worst, 'seconds': seconds}
 
 
-def run(work, selected, jobs, time_limit):
+def run(work, selected, jobs, time_limit, on_result=lambda row: None):
     os.makedirs(work, exist_ok=True)
     environment = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
     pending, running, results = list(selected), {}, {}
@@ -139,6 +141,7 @@ def run(work, selected, jobs, time_limit):
             row = classify(work, name, status, text, elapsed, time_limit)
             row['description'] = description
             results[name] = row
+            on_result(row)
             print(f'[{name}] {row["outcome"]} ({elapsed:.0f} s, {row["states"]} states, worst balance '
                   f'{row["balance"]:.1e})', flush=True)
             del running[name]
@@ -172,7 +175,15 @@ def main():
             sys.exit(f'unknown case "{name}"; cases: {", ".join(names)}')
     selected = [c for c in everything if not arguments.only or c[0] in arguments.only]
     started = time.time()
-    rows = run(arguments.work, selected, arguments.jobs, arguments.time_limit)
+    stored = os.path.join(arguments.work, 'outcomes.json')
+    known = json.load(open(stored)) if os.path.exists(stored) and not arguments.again else {}
+
+    def keep(row):
+        known[row['case']] = row
+        json.dump(known, open(stored, 'w'), indent=1)
+
+    run(arguments.work, [c for c in selected if c[0] not in known], arguments.jobs, arguments.time_limit, keep)
+    rows = [known[name] for name, _, _ in selected]
     table = markdown(rows)
     print(table)
     print(f'{len(rows)} cases in {time.time() - started:.0f} s')

@@ -1,16 +1,23 @@
 #!/usr/bin/env python3
 """Runs the paper's studies (the scenes in xml/studies/) and writes their tables and figures.
 
-    scripts/run-study.py <study> [--jobs 2] [--work DIR] [--docs]
+    scripts/run-study.py <study> [--jobs 2] [--work DIR] [--mesh LEVEL] [--docs]
 
 studies: table4 (peel by rotation), table6 (pull-off at 45/60/75/90 deg, also Table 5), stiction, gamma-W (Table 7),
 gamma-L (Table 8), rough (Fig. 14), all. Runs use one MPI rank each, `--jobs` of them at once (both cores by default); pull-offs
 wait for the rotation run whose checkpoints they start from. Progress: one line per converged step of every run.
-Results: <work>/<scene>/ per run, <work>/tables/*.csv and *.md, and with --docs docs/validation.md and its PNGs.
-Needs a build (build/apps/spatula/spatula). Runs already complete in <work> are not repeated.
+
+Mesh level: the scenes in xml/studies/ are written for the medium mesh and tables 4 and 6 and the rough study run on it.
+The sweeps (stiction, gamma-W, gamma-L: eight rotations and pull-offs) run on the coarse mesh unless `--mesh` says
+otherwise: on the medium mesh each takes about 25 minutes here, on the coarse one about 3. `--mesh LEVEL` runs every
+scene of the study on LEVEL. A run's scene file is the study XML with the level replaced, written beside its output.
+
+Results: <work>/<level>/<scene>/ per run, <work>/<level>/tables/*.csv and *.md, and with --docs docs/validation.md
+and its PNGs. Needs a build (build/apps/spatula/spatula). Runs already complete in <work> are not repeated.
 """
 import argparse
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -20,7 +27,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from curves import interpolate, pull_off_summary, read_curve  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-APP = os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula')
+APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula'))
 SCENES = os.path.join(ROOT, 'xml', 'studies')
 
 STUDIES = {
@@ -34,6 +41,34 @@ STUDIES = {
 STUDIES['all'] = sorted({scene for scenes in STUDIES.values() for scene in scenes},
                         key=lambda s: (not s.startswith('peel'), s))
 DEPENDS = {f'pull-off-{t}': 'peel-rotation' for t in (45, 60, 75, 90)}
+# The mesh level each study runs on by default (None: the level written in the scene file).
+STUDY_LEVEL = {'stiction': 'coarse', 'gamma-W': 'coarse', 'gamma-L': 'coarse'}
+LEVELS = ('coarse', 'medium', 'fine')
+
+
+def scene_level(scene):
+    return re.search(r'name="level" type="string" value="(\w+)"', open(os.path.join(SCENES, scene + '.xml')).read()).group(1)
+
+
+def planned_runs(study, forced_level):
+    """(level, scene) pairs of a study, each at its study's level (or at forced_level)."""
+    names = [n for n in STUDIES if n != 'all'] if study == 'all' else [study]
+    runs = []
+    for name in names:
+        for scene in STUDIES[name]:
+            level = forced_level or STUDY_LEVEL.get(name) or scene_level(scene)
+            if (level, scene) not in runs:
+                runs.append((level, scene))
+    return sorted(runs, key=lambda r: (r[0] != 'coarse', not r[1].startswith('peel'), r[1]))
+
+
+def scene_file(work, level, scene):
+    """The study XML at the given mesh level, written to <work>/<scene>.xml."""
+    text = open(os.path.join(SCENES, scene + '.xml')).read()
+    text = re.sub(r'(name="level" type="string" value=")\w+(")', r'\g<1>' + level + r'\2', text)
+    path = os.path.join(work, scene + '.xml')
+    open(path, 'w').write(text)
+    return path
 
 # The paper's values this project may use (MODEL.md section 8); the rest are held out.
 PAPER_TABLE4 = {30: (0.237, 0.222, 0.013), '31-': (0.255, 0.232, 0.021), '31+': (0.255, 0.182, 0.071),
@@ -47,43 +82,47 @@ def complete(work, scene):
     return os.path.exists(os.path.join(work, scene, 'curve.csv'))
 
 
-def run_all(scenes, work, jobs):
-    os.makedirs(work, exist_ok=True)
-    pending = [s for s in scenes if not complete(work, s)]
+def run_all(runs, work, jobs):
+    """Runs the (level, scene) pairs not yet complete in <work>/<level>, `jobs` at a time; returns the failed ones."""
+    pending = [r for r in runs if not complete(os.path.join(work, r[0]), r[1])]
     running = {}
     failed = []
     seen = {}
     environment = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
     while pending or running:
-        for scene in list(pending):
+        for run in list(pending):
             if len(running) >= jobs:
                 break
+            level, scene = run
+            directory = os.path.join(work, level)
             dependency = DEPENDS.get(scene)
-            if dependency and not complete(work, dependency):
-                if dependency not in running and dependency not in pending:
-                    print(f'[{scene}] waits for {dependency}, which failed', flush=True)
-                    pending.remove(scene)
-                    failed.append(scene)
+            if dependency and not complete(directory, dependency):
+                if (level, dependency) not in running and (level, dependency) not in pending:
+                    print(f'[{level} {scene}] waits for {dependency}, which failed', flush=True)
+                    pending.remove(run)
+                    failed.append(run)
                 continue
-            pending.remove(scene)
-            log = open(os.path.join(work, scene + '.log'), 'w')
-            running[scene] = (subprocess.Popen([APP, os.path.join(SCENES, scene + '.xml')], cwd=work, stdout=log,
-                                               stderr=subprocess.STDOUT, env=environment), log, time.time())
-            print(f'[{scene}] started', flush=True)
+            pending.remove(run)
+            os.makedirs(directory, exist_ok=True)
+            log = open(os.path.join(directory, scene + '.log'), 'w')
+            running[run] = (subprocess.Popen([APP, scene_file(directory, level, scene)], cwd=directory, stdout=log,
+                                             stderr=subprocess.STDOUT, env=environment), log, time.time())
+            print(f'[{level} {scene}] started', flush=True)
         time.sleep(5)
-        for scene, (process, log, started) in list(running.items()):
-            lines = open(os.path.join(work, scene + '.log')).read().splitlines()
+        for run, (process, log, started) in list(running.items()):
+            level, scene = run
+            lines = open(os.path.join(work, level, scene + '.log')).read().splitlines()
             steps = [l for l in lines if l.startswith('step ') or 'jump' in l or 'detachment' in l]
-            for line in steps[seen.get(scene, 0):]:
-                print(f'[{scene}] {" ".join(line.split())[:170]}', flush=True)
-            seen[scene] = len(steps)
+            for line in steps[seen.get(run, 0):]:
+                print(f'[{level} {scene}] {" ".join(line.split())[:170]}', flush=True)
+            seen[run] = len(steps)
             if process.poll() is not None:
                 log.close()
                 status = 'done' if process.returncode == 0 else f'failed (exit {process.returncode})'
-                print(f'[{scene}] {status} after {time.time() - started:.0f} s', flush=True)
+                print(f'[{level} {scene}] {status} after {time.time() - started:.0f} s', flush=True)
                 if process.returncode != 0:
-                    failed.append(scene)
-                del running[scene]
+                    failed.append(run)
+                del running[run]
     return failed
 
 
@@ -110,13 +149,14 @@ def percent(ours, paper):
     return f'{100.0 * (ours / paper - 1.0):+.1f} %' if paper else ''
 
 
-def write_tables(work, scenes):
+def write_tables(work, scenes, level):
+    """The tables of the runs in work (one mesh level), as Markdown (also written to <work>/tables/)."""
     tables = os.path.join(work, 'tables')
     os.makedirs(tables, exist_ok=True)
     markdown = []
     if complete(work, 'peel-rotation') or os.path.exists(os.path.join(work, 'peel-rotation.incomplete')):
         entries, _ = table4(work)
-        markdown.append('### Table 4: peeling by rotation (values / Pi_c0)\n')
+        markdown.append(f'### Table 4: peeling by rotation (values / Pi_c0) ({level} mesh)\n')
         markdown.append('| theta_y | ours: theta_y [deg] | Pi_ext ours / paper | Pi_int ours / paper | Pi_sa ours / paper '
                         '| balance error |')
         markdown.append('|---|---|---|---|---|---|')
@@ -135,7 +175,7 @@ def write_tables(work, scenes):
                  if (s.startswith('pull-off') or s.startswith('gamma')) and complete(work, s)}
     pulls = [t for t in (45, 60, 75, 90) if f'pull-off-{t}' in summaries]
     if pulls:
-        markdown.append('### Table 6: pull-off at fixed inclination\n')
+        markdown.append(f'### Table 6: pull-off at fixed inclination ({level} mesh)\n')
         markdown.append('| theta_y | P_max [nN] ours / paper | Delta u_z [nm] ours / paper | Delta Pi_ext [1e-18 J] ours / paper |')
         markdown.append('|---|---|---|---|')
         with open(os.path.join(tables, 'table6.csv'), 'w') as out:
@@ -149,7 +189,7 @@ def write_tables(work, scenes):
                                 f'| {s["delta_u_z_nm"]:.0f} / {p[1]} ({percent(s["delta_u_z_nm"], p[1])}) '
                                 f'| {s["delta_Pi_ext_1e-18J"]:.0f} / {p[2]} ({percent(s["delta_Pi_ext_1e-18J"], p[2])}) |')
         markdown.append('')
-        markdown.append('### Table 5: work and stored energies prior to detachment (values / Pi_c0)\n')
+        markdown.append(f'### Table 5: work and stored energies prior to detachment (values / Pi_c0) ({level} mesh)\n')
         markdown.append('| theta_y | Pi_ext,0 ours / paper | Delta Pi_ext | Pi_ext | Pi_int | Pi_sa | worst balance error |')
         markdown.append('|---|---|---|---|---|---|---|')
         for t in pulls:
@@ -164,7 +204,7 @@ def write_tables(work, scenes):
         if 'pull-off-60' in summaries:
             runs = sorted(runs + [(base, 'pull-off-60')])
         if len(runs) > 1:
-            markdown.append(f'### {title}\n')
+            markdown.append(f'### {title} ({level} mesh)\n')
             markdown.append('| factor | P_max [nN] | Delta u_z [nm] | Delta Pi_ext [1e-18 J] |')
             markdown.append('|---|---|---|---|')
             for factor, scene in runs:
@@ -173,7 +213,7 @@ def write_tables(work, scenes):
             markdown.append('')
     if 'pull-off-60-stiction' in summaries and 'pull-off-60' in summaries:
         a, b = summaries['pull-off-60'], summaries['pull-off-60-stiction']
-        markdown.append('### Stiction vs frictionless at 60 deg\n')
+        markdown.append(f'### Stiction vs frictionless at 60 deg ({level} mesh)\n')
         markdown.append('| law | P_max [nN] | Delta u_z [nm] | Delta Pi_ext [1e-18 J] |')
         markdown.append('|---|---|---|---|')
         for name, s in (('frictionless', a), ('stiction', b)):
@@ -184,27 +224,35 @@ def write_tables(work, scenes):
     return text, summaries
 
 
-def plots(work, summaries, directory):
+def plots(results, directory):
+    """Figures 6, 8, 9 and 10 from results = {level: (work directory, summaries)}; returns (file, caption) pairs."""
     import matplotlib
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
     pictures = []
-    if os.path.exists(os.path.join(work, 'peel-rotation', 'curve.csv')):
-        rows = read_curve(work, 'peel-rotation')
+    finest_first = [level for level in reversed(LEVELS) if level in results]
+    peels = [(level, read_curve(results[level][0], 'peel-rotation')) for level in finest_first
+             if complete(results[level][0], 'peel-rotation')]
+    if peels:
         fig, (axis, energy) = plt.subplots(1, 2, figsize=(12, 4.2))
-        theta = [r['theta_y_deg'] for r in rows]
-        axis.plot(theta, [r['M_y_per_ER0^3'] for r in rows], '.-', markersize=2)
+        for index, (level, rows) in enumerate(peels):
+            style = '-' if index == 0 else '--'
+            theta = [r['theta_y_deg'] for r in rows]
+            axis.plot(theta, [r['M_y_per_ER0^3'] for r in rows], style, linewidth=1, label=f'{level} mesh')
+            for key, label, colour, column in (('Pi_ext_per_Pi_c0', 'Pi_ext', 'tab:blue', 0),
+                                               ('Pi_int_per_Pi_c0', 'Pi_int', 'tab:orange', 1),
+                                               ('Pi_sa_per_Pi_c0', 'Pi_sa', 'tab:green', 2)):
+                energy.plot(theta, [r[key] for r in rows], style, color=colour, linewidth=1,
+                            label=f'{label} (ours, {level})')
+                if index == 0:
+                    paper = [(31.0 if k in ('31-', '31+') else k, v[column]) for k, v in PAPER_TABLE4.items()]
+                    energy.plot([a for a, _ in paper], [v for _, v in paper], 'o', color=colour, markerfacecolor='none',
+                                label=label + ' (paper, Table 4)')
         axis.set_xlabel('theta_y [deg]')
         axis.set_ylabel('M_y / (E R0^3)')
         axis.set_title('Moment (cf. paper Fig. 6)')
+        axis.legend()
         axis.grid(alpha=0.3)
-        for key, label, colour, column in (('Pi_ext_per_Pi_c0', 'Pi_ext', 'tab:blue', 0),
-                                           ('Pi_int_per_Pi_c0', 'Pi_int', 'tab:orange', 1),
-                                           ('Pi_sa_per_Pi_c0', 'Pi_sa', 'tab:green', 2)):
-            energy.plot(theta, [r[key] for r in rows], '-', color=colour, label=label + ' (ours)')
-            paper = [(31.0 if k in ('31-', '31+') else k, v[column]) for k, v in PAPER_TABLE4.items()]
-            energy.plot([a for a, _ in paper], [v for _, v in paper], 'o', color=colour, markerfacecolor='none',
-                        label=label + ' (paper, Table 4)')
         energy.set_xlabel('theta_y [deg]')
         energy.set_ylabel('energy / Pi_c0')
         energy.set_title('Energies (cf. paper Table 4)')
@@ -223,20 +271,25 @@ def plots(work, summaries, directory):
               ('validation-fig10-gamma-L.png', 'gamma_L / gamma_L0 at 60 deg (cf. paper Fig. 10, right)',
                [('gamma-L-0.444', '1.5^-2'), ('gamma-L-0.667', '1.5^-1'), ('pull-off-60', '1'), ('gamma-L-1.5', '1.5')]))
     for name, title, curves in groups:
-        present = [(s, label) for s, label in curves if s in summaries]
-        if not present:
+        # The finest level that has the most of the group's curves.
+        counts = [(sum(s in results[level][1] for s, _ in curves), level) for level in finest_first]
+        count, level = max(counts, key=lambda c: c[0]) if counts else (0, None)
+        if count < 1 or (count < 2 and len(curves) > 1 and name != 'validation-fig8-pull-off.png'):
             continue
+        summaries = results[level][1]
         fig, axis = plt.subplots(figsize=(7, 4))
-        for scene, label in present:
-            rows = summaries[scene]['rows']
-            axis.plot([r['u_z_nm'] for r in rows], [r['P_z_nN'] for r in rows], '.-', markersize=2, label=label)
+        for scene, label in curves:
+            if scene in summaries:
+                rows = summaries[scene]['rows']
+                axis.plot([r['u_z_nm'] for r in rows], [r['P_z_nN'] for r in rows], '.-', markersize=2, label=label)
         axis.set_xlabel('u_z of the end face centre from the undeformed state [nm]')
         axis.set_ylabel('P_z [nN]')
-        axis.set_title(title)
+        axis.set_title(f'{title}, {level} mesh', fontsize=10)
         axis.legend()
+        axis.grid(alpha=0.3)
         fig.tight_layout()
         fig.savefig(os.path.join(directory, name), dpi=110)
-        pictures.append((name, title))
+        pictures.append((name, f'{title}, {level} mesh'))
     return pictures
 
 
@@ -275,21 +328,31 @@ def main():
     parser.add_argument('study', choices=sorted(STUDIES))
     parser.add_argument('--jobs', type=int, default=2)
     parser.add_argument('--work', default=os.path.join(ROOT, 'study-output'))
+    parser.add_argument('--mesh', choices=LEVELS, help='run every scene of the study on this mesh level')
     parser.add_argument('--docs', action='store_true', help='write docs/validation.md and its figures')
     arguments = parser.parse_args()
     if not os.path.exists(APP):
         sys.exit(f'{APP} not found: build first (bash scripts/build.sh)')
-    scenes = STUDIES[arguments.study]
+    runs = planned_runs(arguments.study, arguments.mesh)
     started = time.time()
-    failed = run_all(scenes, arguments.work, arguments.jobs)
-    print(f'study {arguments.study}: {len(scenes) - len(failed)} of {len(scenes)} runs complete in '
-          f'{time.time() - started:.0f} s' + (f'; failed: {", ".join(failed)}' if failed else ''), flush=True)
-    text, summaries = write_tables(arguments.work, STUDIES['all'])
+    failed = run_all(runs, arguments.work, arguments.jobs)
+    print(f'study {arguments.study}: {len(runs) - len(failed)} of {len(runs)} runs complete in '
+          f'{time.time() - started:.0f} s' + (f'; failed: {", ".join(" ".join(f) for f in failed)}' if failed else ''),
+          flush=True)
+    results, texts = {}, []
+    for level in LEVELS:
+        directory = os.path.join(arguments.work, level)
+        if os.path.isdir(directory):
+            text, summaries = write_tables(directory, STUDIES['all'], level)
+            results[level] = (directory, summaries)
+            texts.append(text)
+    text = '\n'.join(t for t in texts if t)
     print(text)
     if arguments.docs:
         docs = os.path.join(ROOT, 'docs')
-        pictures = plots(arguments.work, summaries, docs)
-        pictures += field_pictures(arguments.work, docs)
+        pictures = plots(results, docs)
+        finest = next(level for level in reversed(LEVELS) if level in results)
+        pictures += field_pictures(results[finest][0], docs)
         template = open(os.path.join(ROOT, 'docs', 'validation-notes.md')).read()
         with open(os.path.join(docs, 'validation.md'), 'w') as out:
             out.write(template.replace('{{TABLES}}', text).replace(
