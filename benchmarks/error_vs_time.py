@@ -40,8 +40,9 @@ SETS = {
     # mesh level x enrichment x contact quadrature on the coarse mesh
     'grid': [dict(enrichment=e, quadrature=q) for e in ('Q1C1', 'Q1C2') for q in (2, 3, 4, 6)],
     # in-plane refinement k = 1, 2, 4 (the reference) and the enrichment / quadrature on the finer meshes
-    'refinement': [dict(refinement=2), dict(level='medium'), dict(refinement=2, enrichment='Q1C1'),
-                   dict(refinement=2, quadrature=3), dict(level='medium', quadrature=3)],
+    'refinement': [dict(refinement=2), dict(level='medium')],
+    'refinement-extra': [dict(refinement=2, enrichment='Q1C1'), dict(refinement=2, quadrature=3),
+                         dict(level='medium', quadrature=3)],
     # linear solvers, ranks and step control on the coarse x2 mesh
     'solvers': [dict(refinement=2, lag=4), dict(refinement=2, solver='gmres-ilu'), dict(refinement=2, ranks=2),
                 dict(refinement=2, rotation_maximum=4.0, lift_maximum=10.0),
@@ -162,13 +163,22 @@ def from_study(directory):
     return row
 
 
+def number(text):
+    """A CSV cell: a float where it is one, None where empty, the text otherwise (names, True/False)."""
+    if not text:
+        return None
+    try:
+        return float(text)
+    except ValueError:
+        return text
+
+
 def load(path):
     if not os.path.exists(path):
         return {}
     out = {}
     for r in csv.DictReader(open(path)):
-        out[r['name']] = {k: (v if k in ('name', 'level', 'enrichment', 'solver', 'source', 'substrate') else float(v) if v else None)
-                          for k, v in r.items()}
+        out[r['name']] = {k: number(v) for k, v in r.items()}
     return out
 
 

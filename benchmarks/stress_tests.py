@@ -92,7 +92,7 @@ def classify(work, name, status, log_text, seconds, time_limit):
     where = (f"theta_y {float(last['theta_y_deg']):.1f} deg, u_z {float(last['u_z_nm']):.0f} nm" if last else '-')
     lines = log_text.splitlines()
     detached = [l for l in lines if l.startswith('detachment')]
-    errors = [l for l in lines if l.startswith('spatula:')]
+    errors = [l for l in lines if l.startswith('spatula:') and 'results up to the last converged step' not in l]
     if status is None:
         outcome = f'HANG: killed after {time_limit} s'
     elif not finite:
@@ -110,7 +110,7 @@ def classify(work, name, status, log_text, seconds, time_limit):
         outcome += f'; BALANCE ERROR {worst:.1e} > {BALANCE_LIMIT:g}'
     acceptable = status is not None and finite and balance_ok and (status == 0 or bool(errors))
     peak = max((float(r['P_z_nN']) for r in rows if r['stage'] == 'lift'), default=float('nan'))
-    return {'case': name, 'outcome': outcome, 'acceptable': acceptable, 'states': len(rows), 'jumps': jumps,
+    return {'case': name, 'status': status, 'outcome': outcome, 'acceptable': acceptable, 'states': len(rows), 'jumps': jumps,
             'last': where, 'P_max': peak, 'balance': worst, 'seconds': seconds}
 
 
@@ -183,7 +183,14 @@ def main():
         json.dump(known, open(stored, 'w'), indent=1)
 
     run(arguments.work, [c for c in selected if c[0] not in known], arguments.jobs, arguments.time_limit, keep)
-    rows = [known[name] for name, _, _ in selected]
+    rows = []
+    for name, description, _ in selected:   # classified again from the logs, so a better classifier applies to old runs
+        row = known[name]
+        status = row.get('status', 0 if row['outcome'].startswith(('detached', 'reached')) else
+                         None if row['outcome'].startswith('HANG') else 1)
+        text = open(os.path.join(arguments.work, name + '.log')).read()
+        rows.append(dict(classify(arguments.work, name, status, text, row['seconds'], arguments.time_limit),
+                         description=description))
     table = markdown(rows)
     print(table)
     print(f'{len(rows)} cases in {time.time() - started:.0f} s')

@@ -82,6 +82,11 @@ def complete(work, scene):
     return os.path.exists(os.path.join(work, scene, 'curve.csv'))
 
 
+def started(work, scene):
+    """Complete, or stopped with the curve up to its last converged state in <scene>.incomplete/."""
+    return complete(work, scene) or os.path.exists(os.path.join(work, scene + '.incomplete', 'curve.csv'))
+
+
 def run_all(runs, work, jobs):
     """Runs the (level, scene) pairs not yet complete in <work>/<level>, `jobs` at a time; returns the failed ones."""
     pending = [r for r in runs if not complete(os.path.join(work, r[0]), r[1])]
@@ -219,6 +224,21 @@ def write_tables(work, scenes, level):
         for name, s in (('frictionless', a), ('stiction', b)):
             markdown.append(f'| {name} | {s["P_max_nN"]:.2f} | {s["delta_u_z_nm"]:.0f} | {s["delta_Pi_ext_1e-18J"]:.0f} |')
         markdown.append('')
+    rough = [(z0, read_curve(work, f'rough-z0-{z0}'), complete(work, f'rough-z0-{z0}')) for z0 in (0, 4, 8)
+             if started(work, f'rough-z0-{z0}')]
+    if rough:
+        markdown.append(f'### Rough substrates, rotation to 45 deg with zero net force (cf. paper Fig. 14) ({level} mesh)\n')
+        markdown.append('| z0 [nm] | reached theta_y [deg] | M_y at 30 deg [nN nm] | largest M_y [nN nm] | Pi_sa / Pi_c0 at the last state '
+                        '| worst balance error |')
+        markdown.append('|---|---|---|---|---|---|')
+        for z0, rows, done in rough:
+            at30 = interpolate(rows, 'theta_y_deg', 30.0, ['M_y_nNnm'])
+            markdown.append(f'| {z0} | {rows[-1]["theta_y_deg"]:.1f}{"" if done else " (run not finished)"} '
+                            f'| {at30["M_y_nNnm"]:.0f} | {max(r["M_y_nNnm"] for r in rows):.0f} '
+                            f'| {rows[-1]["Pi_sa_per_Pi_c0"]:.3f} '
+                            f'| {max(r["balance_error_per_Pi_c0"] for r in rows):.1e} |' if at30 else
+                            f'| {z0} | {rows[-1]["theta_y_deg"]:.1f} (not finished) | | | | |')
+        markdown.append('')
     text = '\n'.join(markdown)
     open(os.path.join(tables, 'tables.md'), 'w').write(text)
     return text, summaries
@@ -262,6 +282,26 @@ def plots(results, directory):
         name = 'validation-fig6-moment.png'
         fig.savefig(os.path.join(directory, name), dpi=110)
         pictures.append((name, 'Peeling by rotation: moment and energies against inclination (cf. paper Fig. 6, Table 4)'))
+    for level in finest_first:
+        rough = [(z0, read_curve(results[level][0], f'rough-z0-{z0}'), complete(results[level][0], f'rough-z0-{z0}'))
+                 for z0 in (0, 4, 8) if started(results[level][0], f'rough-z0-{z0}')]
+        if not rough:
+            continue
+        fig, axis = plt.subplots(figsize=(7, 4))
+        for z0, rows, done in rough:
+            axis.plot([r['theta_y_deg'] for r in rows], [r['M_y_nNnm'] for r in rows], '.-', markersize=2,
+                      label=f'z0 = {z0} nm' + ('' if done else ' (not finished)'))
+        axis.set_xlabel('theta_y [deg]')
+        axis.set_ylabel('M_y [nN nm]')
+        title = f'Rough substrates, h = 20 nm, lambda = 100 nm (cf. paper Fig. 14), {level} mesh'
+        axis.set_title(title, fontsize=10)
+        axis.legend()
+        axis.grid(alpha=0.3)
+        fig.tight_layout()
+        name = 'validation-fig14-rough-moment.png'
+        fig.savefig(os.path.join(directory, name), dpi=110)
+        pictures.append((name, 'Moment against inclination on rough substrates: ' + title))
+        break
     groups = (('validation-fig8-pull-off.png', 'Pull-off at fixed inclination (cf. paper Fig. 8)',
                [(f'pull-off-{t}', f'{t} deg') for t in (45, 60, 75, 90)]),
               ('validation-fig9-stiction.png', 'Stiction vs frictionless at 60 deg (cf. paper Fig. 9)',
@@ -314,6 +354,9 @@ def field_pictures(work, directory):
     out = []
     for scene, times, name, caption in FIELD_PICTURES:
         states = os.path.join(work, scene, 'mesh_states.xmf')
+        if not os.path.exists(states):
+            states = os.path.join(work, scene + '.incomplete', 'mesh_states.xmf')
+            caption += ' (the run did not finish: its last written state)'
         if not os.path.exists(states):
             continue
         command = ['bash', os.path.join(ROOT, 'scripts', 'render.sh'), os.path.join(ROOT, 'scripts', 'render_states.py'),
