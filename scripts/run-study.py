@@ -76,6 +76,7 @@ PAPER_TABLE4 = {30: (0.237, 0.222, 0.013), '31-': (0.255, 0.232, 0.021), '31+': 
                 128: (1.551, 0.738, 0.811)}
 PAPER_TABLE6 = {45: (7.63, 248, 1097), 60: (6.67, 185, 701), 75: (5.59, 125, 422), 90: (4.40, 80, 235)}
 PAPER_TABLE5_START = {45: 0.463, 60: 0.689, 75: 0.897, 90: 1.088}
+PAPER_PI_C0 = 759.3   # E R0^3, the paper's exact-law contact energy of the undeformed spatula (its area)
 
 
 def complete(work, scene):
@@ -145,7 +146,9 @@ def table4(work):
             out.insert(1, ('31- (before the first drop)', rows[i - 1]['theta_y_deg'], rows[i - 1], PAPER_TABLE4['31-']))
             out.insert(2, ('31+ (after it)', row['theta_y_deg'], row, PAPER_TABLE4['31+']))
             break
-    last = rows[-1]
+    # The last state before detachment: the final row is the detached state when the run ended by a collapse.
+    peak = max(abs(r['M_y_nNnm']) for r in rows)
+    last = rows[-2] if len(rows) > 1 and abs(rows[-1]['M_y_nNnm']) < 0.01 * peak else rows[-1]
     out.append(('128 (last state before detachment)', last['theta_y_deg'], last, PAPER_TABLE4[128]))
     return out, rows
 
@@ -175,6 +178,22 @@ def write_tables(work, scenes, level):
                     f'| {v["Pi_int_per_Pi_c0"]:.3f} / {p[1]} ({percent(v["Pi_int_per_Pi_c0"], p[1])}) '
                     f'| {v["Pi_sa_per_Pi_c0"]:.3f} / {p[2]} ({percent(v["Pi_sa_per_Pi_c0"], p[2])}) '
                     f'| {v["balance_error_per_Pi_c0"]:.1e} |')
+        markdown.append('')
+        # The same energies in units of the paper's Pi_c0 (its contact area is 1.4 % smaller than ours): the
+        # deformation energies are absolute, so this is the like-for-like comparison of Pi_ext and Pi_int.
+        rows = read_curve(work, 'peel-rotation')
+        row = next(r for r in rows if r['Pi_ext_per_Pi_c0'] > 0.01 and abs(r['M_y_per_ER0^3']) > 0.01)
+        young_r0_cubed = row['M_y_nNnm'] / row['M_y_per_ER0^3']   # E R0^3 in nN nm = 1e-18 J
+        ours = row['Pi_ext_1e-18J'] / row['Pi_ext_per_Pi_c0'] / young_r0_cubed
+        scale = ours / PAPER_PI_C0
+        markdown.append(f'The same in units of the paper\'s Pi_c0 = {PAPER_PI_C0} E R0^3 (ours is {ours:.1f} E R0^3: '
+                        f'values x {scale:.4f}):\n')
+        markdown.append('| theta_y | Pi_ext ours / paper | Pi_int ours / paper | Pi_sa ours / paper |')
+        markdown.append('|---|---|---|---|')
+        for label, theta, v, p in entries:
+            cells = [f'{scale * v[k]:.3f} / {q} ({percent(scale * v[k], q)})'
+                     for k, q in zip(('Pi_ext_per_Pi_c0', 'Pi_int_per_Pi_c0', 'Pi_sa_per_Pi_c0'), p)]
+            markdown.append(f'| {label} | ' + ' | '.join(cells) + ' |')
         markdown.append('')
     summaries = {s: pull_off_summary(work, s) for s in scenes
                  if (s.startswith('pull-off') or s.startswith('gamma')) and complete(work, s)}
