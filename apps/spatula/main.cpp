@@ -129,7 +129,7 @@ int main(int argc, char** argv)
               << failure->smallest_increment << "): " << failure->reason << "\n";
           directory->abandon();
           std::cerr << "spatula: solver failure at step " << failure->step << ", load " << failure->load
-                    << " (deg or nm) after cutting the increment to " << failure->smallest_increment << ": "
+                    << " (rotation theta_y - theta_s in deg, or lift in nm) after cutting the increment to " << failure->smallest_increment << ": "
                     << failure->reason << "\nspatula: results up to the last converged step are in "
                     << scene.output.directory << ".incomplete/\n";
         }

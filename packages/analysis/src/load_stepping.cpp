@@ -113,7 +113,8 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
   auto& system = model_.system();
   control.prescribed[static_cast<int>(controlled)] = true;
   system.set_control(control);
-  const char* name = controlled == Master::rotation ? "theta" : controlled == Master::lift ? "lift" : "slide";
+  // The rotation master is the end face's rotation from the initial inclination (theta_y - theta_s), in degrees.
+  const char* name = controlled == Master::rotation ? "rotation theta_y - theta_s" : controlled == Master::lift ? "lift" : "slide";
 
   double value = system.master(*x_, controlled);
   double increment = steps.initial * unit;
@@ -139,6 +140,7 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
                           << "(an instability); jumping to the next stable state\n";
           auto failure = jump(controlled, unreached, on_point);
           system.set_control(control);
+          if (failure) failure->load = unreached / unit;   // in the load's unit, as every other failure
           if (failure) return failure;
           value = unreached;
           increment = steps.initial * unit;
