@@ -83,6 +83,18 @@ def complete(work, scene):
     return os.path.exists(os.path.join(work, scene, 'curve.csv'))
 
 
+def outcome(work, scene):
+    """How a pull-off ended: detached, or stopped with the app's diagnosis (Delta u_z and Delta Pi_ext are then
+    taken to the last converged state, just before the snap the jump could not follow)."""
+    if complete(work, scene):
+        return 'detached' if pull_off_summary(work, scene)['detached'] else 'final lift reached'
+    log = os.path.join(work, scene + '.log')
+    lines = [l for l in open(log).read().splitlines() if l.startswith('spatula: solver failure')] if os.path.exists(log) else []
+    if lines:
+        return 'stopped: ' + lines[-1].split(':', 2)[2].strip() + ' (values up to the last converged state)'
+    return 'did not finish (values up to the last converged state)'
+
+
 def started(work, scene):
     """Complete, or stopped with the curve up to its last converged state in <scene>.incomplete/."""
     return complete(work, scene) or os.path.exists(os.path.join(work, scene + '.incomplete', 'curve.csv'))
@@ -148,8 +160,10 @@ def table4(work):
             break
     # The last state before detachment: the final row is the detached state when the run ended by a collapse.
     peak = max(abs(r['M_y_nNnm']) for r in rows)
-    last = rows[-2] if len(rows) > 1 and abs(rows[-1]['M_y_nNnm']) < 0.01 * peak else rows[-1]
-    out.append(('128 (last state before detachment)', last['theta_y_deg'], last, PAPER_TABLE4[128]))
+    detached = len(rows) > 1 and abs(rows[-1]['M_y_nNnm']) < 0.01 * peak
+    last = rows[-2] if detached else rows[-1]
+    label = '128 (last state before detachment)' if detached else '128 (paper) / our last state: not detached'
+    out.append((label, last['theta_y_deg'], last, PAPER_TABLE4[128]))
     return out, rows
 
 
@@ -195,8 +209,8 @@ def write_tables(work, scenes, level):
                      for k, q in zip(('Pi_ext_per_Pi_c0', 'Pi_int_per_Pi_c0', 'Pi_sa_per_Pi_c0'), p)]
             markdown.append(f'| {label} | ' + ' | '.join(cells) + ' |')
         markdown.append('')
-    summaries = {s: pull_off_summary(work, s) for s in scenes
-                 if (s.startswith('pull-off') or s.startswith('gamma')) and complete(work, s)}
+    summaries = {s: dict(pull_off_summary(work, s), outcome=outcome(work, s)) for s in scenes
+                 if (s.startswith('pull-off') or s.startswith('gamma')) and started(work, s)}
     pulls = [t for t in (45, 60, 75, 90) if f'pull-off-{t}' in summaries]
     if pulls:
         markdown.append(f'### Table 6: pull-off at fixed inclination ({level} mesh)\n')
@@ -211,7 +225,8 @@ def write_tables(work, scenes, level):
                           f'{p[0]},{p[1]},{p[2]},{s["detached"]}\n')
                 markdown.append(f'| {t} | {s["P_max_nN"]:.2f} / {p[0]} ({percent(s["P_max_nN"], p[0])}) '
                                 f'| {s["delta_u_z_nm"]:.0f} / {p[1]} ({percent(s["delta_u_z_nm"], p[1])}) '
-                                f'| {s["delta_Pi_ext_1e-18J"]:.0f} / {p[2]} ({percent(s["delta_Pi_ext_1e-18J"], p[2])}) |')
+                                f'| {s["delta_Pi_ext_1e-18J"]:.0f} / {p[2]} ({percent(s["delta_Pi_ext_1e-18J"], p[2])}) |'
+                                + ('' if s['outcome'] == 'detached' else f' {s["outcome"]}'))
         markdown.append('')
         markdown.append(f'### Table 5: work and stored energies prior to detachment (values / Pi_c0) ({level} mesh)\n')
         markdown.append('| theta_y | Pi_ext,0 ours / paper | Delta Pi_ext | Pi_ext | Pi_int | Pi_sa | worst balance error |')
@@ -229,19 +244,21 @@ def write_tables(work, scenes, level):
             runs = sorted(runs + [(base, 'pull-off-60')])
         if len(runs) > 1:
             markdown.append(f'### {title} ({level} mesh)\n')
-            markdown.append('| factor | P_max [nN] | Delta u_z [nm] | Delta Pi_ext [1e-18 J] |')
-            markdown.append('|---|---|---|---|')
+            markdown.append('| factor | P_max [nN] | Delta u_z [nm] | Delta Pi_ext [1e-18 J] | end of the run |')
+            markdown.append('|---|---|---|---|---|')
             for factor, scene in runs:
                 s = summaries[scene]
-                markdown.append(f'| {factor:g} | {s["P_max_nN"]:.2f} | {s["delta_u_z_nm"]:.0f} | {s["delta_Pi_ext_1e-18J"]:.0f} |')
+                markdown.append(f'| {factor:g} | {s["P_max_nN"]:.2f} | {s["delta_u_z_nm"]:.0f} | {s["delta_Pi_ext_1e-18J"]:.0f} '
+                                f'| {s["outcome"]} |')
             markdown.append('')
     if 'pull-off-60-stiction' in summaries and 'pull-off-60' in summaries:
         a, b = summaries['pull-off-60'], summaries['pull-off-60-stiction']
         markdown.append(f'### Stiction vs frictionless at 60 deg ({level} mesh)\n')
-        markdown.append('| law | P_max [nN] | Delta u_z [nm] | Delta Pi_ext [1e-18 J] |')
-        markdown.append('|---|---|---|---|')
+        markdown.append('| law | P_max [nN] | Delta u_z [nm] | Delta Pi_ext [1e-18 J] | end of the run |')
+        markdown.append('|---|---|---|---|---|')
         for name, s in (('frictionless', a), ('stiction', b)):
-            markdown.append(f'| {name} | {s["P_max_nN"]:.2f} | {s["delta_u_z_nm"]:.0f} | {s["delta_Pi_ext_1e-18J"]:.0f} |')
+            markdown.append(f'| {name} | {s["P_max_nN"]:.2f} | {s["delta_u_z_nm"]:.0f} | {s["delta_Pi_ext_1e-18J"]:.0f} '
+                            f'| {s["outcome"]} |')
         markdown.append('')
     rough = [(z0, read_curve(work, f'rough-z0-{z0}'), complete(work, f'rough-z0-{z0}')) for z0 in (0, 4, 8)
              if started(work, f'rough-z0-{z0}')]
