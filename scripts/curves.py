@@ -24,6 +24,8 @@ def pull_off_summary(work, scene):
     the energies of the last state before detachment (Table 5)."""
     rows = read_curve(work, scene)
     lift = [r for r in rows if r['stage'] == 'lift']
+    if not lift:   # the run stopped before its lift began
+        return {'rows': [], 'worst_balance_error': max(r['balance_error_per_Pi_c0'] for r in rows)}
     start = lift[0] if lift else rows[-1]
     peak = max(lift, key=lambda r: r['P_z_nN']) if lift else start
     detach = next((r for r in lift if r['u_z_nm'] > peak['u_z_nm'] and r['P_z_nN'] < 0.01 * peak['P_z_nN']), lift[-1])

@@ -209,8 +209,16 @@ def write_tables(work, scenes, level):
                      for k, q in zip(('Pi_ext_per_Pi_c0', 'Pi_int_per_Pi_c0', 'Pi_sa_per_Pi_c0'), p)]
             markdown.append(f'| {label} | ' + ' | '.join(cells) + ' |')
         markdown.append('')
-    summaries = {s: dict(pull_off_summary(work, s), outcome=outcome(work, s)) for s in scenes
-                 if (s.startswith('pull-off') or s.startswith('gamma')) and started(work, s)}
+    summaries, unfinished = {}, []
+    for scene in scenes:
+        if (scene.startswith('pull-off') or scene.startswith('gamma')) and started(work, scene):
+            summary = dict(pull_off_summary(work, scene), outcome=outcome(work, scene))
+            if summary['rows']:
+                summaries[scene] = summary
+            else:   # stopped before the lift began
+                last = read_curve(work, scene)[-1]
+                unfinished.append(f'- `{scene}`, during the rotation at theta_y = {last["theta_y_deg"]:.1f} deg: '
+                                  f'{summary["outcome"]}')
     pulls = [t for t in (45, 60, 75, 90) if f'pull-off-{t}' in summaries]
     if pulls:
         markdown.append(f'### Table 6: pull-off at fixed inclination ({level} mesh)\n')
@@ -260,6 +268,9 @@ def write_tables(work, scenes, level):
             markdown.append(f'| {name} | {s["P_max_nN"]:.2f} | {s["delta_u_z_nm"]:.0f} | {s["delta_Pi_ext_1e-18J"]:.0f} '
                             f'| {s["outcome"]} |')
         markdown.append('')
+    if unfinished:
+        markdown.append(f'### Runs that stopped before their pull-off ({level} mesh)\n')
+        markdown += unfinished + ['']
     rough = [(z0, read_curve(work, f'rough-z0-{z0}'), complete(work, f'rough-z0-{z0}')) for z0 in (0, 4, 8)
              if started(work, f'rough-z0-{z0}')]
     if rough:
@@ -409,12 +420,13 @@ def main():
     parser.add_argument('--work', default=os.path.join(ROOT, 'study-output'))
     parser.add_argument('--mesh', choices=LEVELS, help='run every scene of the study on this mesh level')
     parser.add_argument('--docs', action='store_true', help='write docs/validation.md and its figures')
+    parser.add_argument('--no-run', action='store_true', help='only tabulate (and with --docs, document) the runs present')
     arguments = parser.parse_args()
     if not os.path.exists(APP):
         sys.exit(f'{APP} not found: build first (bash scripts/build.sh)')
     runs = planned_runs(arguments.study, arguments.mesh)
     started = time.time()
-    failed = run_all(runs, arguments.work, arguments.jobs)
+    failed = [] if arguments.no_run else run_all(runs, arguments.work, arguments.jobs)
     print(f'study {arguments.study}: {len(runs) - len(failed)} of {len(runs)} runs complete in '
           f'{time.time() - started:.0f} s' + (f'; failed: {", ".join(" ".join(f) for f in failed)}' if failed else ''),
           flush=True)
