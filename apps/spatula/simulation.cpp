@@ -105,6 +105,8 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
     state.cell_scalars["I1"] = std::move(trace);   // the paper's colour scale: tr(sigma) / E
     if (fields) fields->add_state(state);
   };
+  constexpr double balance_limit = 2e-3;   // |Pi_ext - Pi_int - Pi_sa - D| / Pi_c0, the paper's bound
+  bool balance_warned = false;
   auto on_point = [&](const analysis::LoadPoint& p, const discretization::Vector& x) {
     if (root) {
       curve->write(p, stage, theta_s);
@@ -123,6 +125,13 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
           << p.seconds << " s" << std::endl;
       out.flags(flags);   // the step line's format stays with it
       out.precision(precision);
+      // A curve whose energies do not balance is not to be trusted: say so once, when it first happens.
+      if (options.contact && !balance_warned && curve->balance_error(p) > balance_limit) {
+        balance_warned = true;
+        out << "warning: at step " << p.step << " the energy balance error " << curve->balance_error(p)
+            << " Pi_c0 exceeds " << balance_limit << " (the paper's bound): the curve from here on is not reliable "
+            << "(contact under-resolved? use Q1C2, more contact quadrature points or smaller steps)" << std::endl;
+      }
     }
     const int interval = scene.output.field_interval;
     if (interval > 0 && p.step % interval == 0)
