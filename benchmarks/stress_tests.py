@@ -170,6 +170,7 @@ def main():
     parser.add_argument('--time-limit', type=float, default=1200.0, help='seconds before a run counts as a hang')
     parser.add_argument('--again', action='store_true', help='run the selected cases even if they have an outcome')
     parser.add_argument('--docs', action='store_true', help='write docs/stability.md')
+    parser.add_argument('--no-run', action='store_true', help='only tabulate the outcomes already stored')
     arguments = parser.parse_args()
     if not os.path.exists(APP):
         sys.exit(f'{APP} not found: build first (bash scripts/build.sh)')
@@ -181,13 +182,15 @@ def main():
     selected = [c for c in everything if not arguments.only or c[0] in arguments.only]
     started = time.time()
     stored = os.path.join(arguments.work, 'outcomes.json')
-    known = json.load(open(stored)) if os.path.exists(stored) and not arguments.again else {}
+    known = json.load(open(stored)) if os.path.exists(stored) else {}
+    pending = [c for c in selected if arguments.again or c[0] not in known]
 
     def keep(row):
         known[row['case']] = row
         json.dump(known, open(stored, 'w'), indent=1)
 
-    run(arguments.work, [c for c in selected if c[0] not in known], arguments.jobs, arguments.time_limit, keep)
+    if not arguments.no_run:
+        run(arguments.work, pending, arguments.jobs, arguments.time_limit, keep)
     rows = []
     for name, description, _ in selected:   # classified again from the logs, so a better classifier applies to old runs
         if name not in known:
