@@ -33,6 +33,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula'))
 sys.path.insert(0, os.path.join(ROOT, 'scripts'))
 from curves import interpolate, pull_off_summary, read_curve  # noqa: E402
+from scenes import app_diagnosis, benchmark_scene  # noqa: E402
 
 DEFAULT = dict(level='coarse', refinement=1, enrichment='Q1C2', quadrature=6, solver='mumps', lag=0, ranks=1,
                rotation_maximum=2.0, lift_maximum=5.0, skip=True, substrate='flat', fields=-1)
@@ -80,36 +81,12 @@ def name(c):
 
 
 def scene(c, directory):
-    substrate = ('<Parameter name="substrate" type="string" value="rough"/>'
-                 '<ParameterList name="Rough Substrate"><Parameter name="z0" type="double" value="0"/></ParameterList>'
-                 if c['substrate'] == 'rough0' else '')
-    return f'''<ParameterList name="{directory}">
-  <ParameterList name="Mesh"><Parameter name="level" type="string" value="{c['level']}"/>
-    <Parameter name="refinement factor" type="int" value="{c['refinement']}"/></ParameterList>
-  <ParameterList name="Adhesion">
-    <Parameter name="law" type="string" value="frictionless"/>
-    <Parameter name="enrichment" type="string" value="{c['enrichment']}"/>
-    <Parameter name="quadrature" type="int" value="{c['quadrature']}"/>
-    <Parameter name="skip distant faces" type="bool" value="{str(c['skip']).lower()}"/>
-    {substrate}
-  </ParameterList>
-  <ParameterList name="Loading">
-    <Parameter name="type" type="string" value="lift"/>
-    <Parameter name="theta_y" type="double" value="60"/>
-    <Parameter name="final lift" type="double" value="600"/>
-    <Parameter name="final lift relative" type="bool" value="true"/>
-    <ParameterList name="Rotation Steps"><Parameter name="maximum" type="double" value="{c['rotation_maximum']}"/>
-      <Parameter name="minimum" type="double" value="0.01"/></ParameterList>
-    <ParameterList name="Lift Steps"><Parameter name="maximum" type="double" value="{c['lift_maximum']}"/>
-      <Parameter name="minimum" type="double" value="0.01"/></ParameterList>
-  </ParameterList>
-  <ParameterList name="Linear Solver"><Parameter name="type" type="string" value="{c['solver']}"/>
-    <Parameter name="lag" type="int" value="{c['lag']}"/></ParameterList>
-  <ParameterList name="Output"><Parameter name="directory" type="string" value="{directory}"/>
-    <Parameter name="write mesh" type="bool" value="{str(c['fields'] >= 0).lower()}"/>
-    <Parameter name="field interval" type="int" value="{max(c['fields'], 0)}"/></ParameterList>
-</ParameterList>
-'''
+    adhesion = {'enrichment': c['enrichment'], 'quadrature': c['quadrature'], 'skip distant faces': c['skip']}
+    if c['substrate'] == 'rough0':
+        adhesion.update({'substrate': 'rough', 'Rough Substrate': {'z0': 0.0}})
+    return benchmark_scene(directory, mesh=c['level'], refinement=c['refinement'], adhesion=adhesion,
+                           rotation_maximum=c['rotation_maximum'], lift_maximum=c['lift_maximum'],
+                           linear_solver={'type': c['solver'], 'lag': c['lag']}, fields=c['fields'])
 
 
 def measure(work, c):
@@ -233,11 +210,9 @@ def errors(row, ref):
 
 
 def diagnosis(work, run_name):
-    """The app's last error line of a failed run (which step, which load, why)."""
+    """The app's failure line of a run (which step, which load, why)."""
     path = os.path.join(work, run_name + '.log')
-    lines = [l for l in open(path).read().splitlines() if l.startswith('spatula:') and 'results up to' not in l] \
-        if os.path.exists(path) else []
-    return lines[-1].split(':', 1)[1].strip() if lines else 'no diagnosis in the log'
+    return (app_diagnosis(open(path).read()) if os.path.exists(path) else None) or 'no diagnosis in the log'
 
 
 def document(results, ref, work):

@@ -23,58 +23,32 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula'))
 GAMMA_W0, GAMMA_L0 = 25.266, 2.5
+sys.path.insert(0, os.path.join(ROOT, 'scripts'))
+from scenes import app_diagnosis, benchmark_scene  # noqa: E402
 BALANCE_LIMIT = 2e-3   # the paper's bound on |Pi_ext - Pi_int - Pi_sa - D| / Pi_c0
 
 
-def scene(name, adhesion='', loading_type='lift', theta=60, rotation_maximum=2, lift_maximum=5, mesh='coarse',
-          final=600):
-    lift = ('<Parameter name="final lift" type="double" value="%g"/>'
-            '<Parameter name="final lift relative" type="bool" value="true"/>' % final) if loading_type == 'lift' else ''
-    return f'''<ParameterList name="{name}">
-  <ParameterList name="Mesh"><Parameter name="level" type="string" value="{mesh}"/></ParameterList>
-  <ParameterList name="Adhesion">
-    <Parameter name="law" type="string" value="frictionless"/>
-    {adhesion}
-  </ParameterList>
-  <ParameterList name="Loading">
-    <Parameter name="type" type="string" value="{loading_type}"/>
-    <Parameter name="theta_y" type="double" value="{theta}"/>
-    {lift}
-    <ParameterList name="Rotation Steps"><Parameter name="maximum" type="double" value="{rotation_maximum}"/>
-      <Parameter name="minimum" type="double" value="0.01"/></ParameterList>
-    <ParameterList name="Lift Steps"><Parameter name="maximum" type="double" value="{lift_maximum}"/>
-      <Parameter name="minimum" type="double" value="0.01"/></ParameterList>
-  </ParameterList>
-  <ParameterList name="Output"><Parameter name="directory" type="string" value="{name}"/>
-    <Parameter name="write mesh" type="bool" value="false"/></ParameterList>
-</ParameterList>
-'''
-
-
 def normalized(gamma_w, gamma_l):
-    return ('<Parameter name="specification" type="string" value="normalized"/>'
-            f'<Parameter name="gamma_W" type="double" value="{gamma_w:.6g}"/>'
-            f'<Parameter name="gamma_L" type="double" value="{gamma_l:.6g}"/>')
+    return {'specification': 'normalized', 'gamma_W': float(f'{gamma_w:.6g}'), 'gamma_L': float(f'{gamma_l:.6g}')}
 
 
 def cases():
     out = []
     for k in (-2, -1, 0, 1, 2, 3):
         out.append((f'gamma-W-1.5^{k}', f'gamma_W = 1.5^{k} gamma_W0, pull-off at 60 deg',
-                    scene(f'gamma-W-1.5^{k}', normalized(GAMMA_W0 * 1.5 ** k, GAMMA_L0))))
+                    benchmark_scene(f'gamma-W-1.5^{k}', adhesion=normalized(GAMMA_W0 * 1.5 ** k, GAMMA_L0))))
     for k in (-3, -2, -1, 1, 2):
         out.append((f'gamma-L-1.5^{k}', f'gamma_L = 1.5^{k} gamma_L0, pull-off at 60 deg',
-                    scene(f'gamma-L-1.5^{k}', normalized(GAMMA_W0, GAMMA_L0 * 1.5 ** k))))
+                    benchmark_scene(f'gamma-L-1.5^{k}', adhesion=normalized(GAMMA_W0, GAMMA_L0 * 1.5 ** k))))
     for z0 in (8, 10):
-        rough = ('<Parameter name="substrate" type="string" value="rough"/>'
-                 f'<ParameterList name="Rough Substrate"><Parameter name="z0" type="double" value="{z0}"/></ParameterList>')
+        rough = {'substrate': 'rough', 'Rough Substrate': {'z0': float(z0)}}
         out.append((f'rough-z0-{z0}', f'rough substrate z0 = {z0} nm, rotation to 45 deg',
-                    scene(f'rough-z0-{z0}', rough, 'rotation', 45)))
+                    benchmark_scene(f'rough-z0-{z0}', adhesion=rough, loading='rotation', theta_y=45)))
     out.append(('steps-x4', 'step maxima x4 (8 deg, 20 nm), pull-off at 60 deg',
-                scene('steps-x4', rotation_maximum=8, lift_maximum=20)))
-    q1c1 = '<Parameter name="enrichment" type="string" value="Q1C1"/>'
-    out.append(('Q1C1-rotation', 'Q1C1, peel by rotation to 140 deg', scene('Q1C1-rotation', q1c1, 'rotation', 140)))
-    out.append(('Q1C1-pull-off', 'Q1C1, pull-off at 60 deg', scene('Q1C1-pull-off', q1c1)))
+                benchmark_scene('steps-x4', rotation_maximum=8, lift_maximum=20)))
+    q1c1 = {'enrichment': 'Q1C1'}
+    out.append(('Q1C1-rotation', 'Q1C1, peel by rotation to 140 deg', benchmark_scene('Q1C1-rotation', adhesion=q1c1, loading='rotation', theta_y=140)))
+    out.append(('Q1C1-pull-off', 'Q1C1, pull-off at 60 deg', benchmark_scene('Q1C1-pull-off', adhesion=q1c1)))
     return out
 
 
@@ -92,7 +66,7 @@ def classify(work, name, status, log_text, seconds, time_limit):
     where = (f"theta_y {float(last['theta_y_deg']):.1f} deg, u_z {float(last['u_z_nm']):.0f} nm" if last else '-')
     lines = log_text.splitlines()
     detached = [l for l in lines if l.startswith('detachment')]
-    errors = [l for l in lines if l.startswith('spatula:') and 'results up to the last converged step' not in l]
+    error = app_diagnosis(log_text)
     if status is None:
         outcome = f'HANG: killed after {time_limit} s'
     elif not finite:
@@ -101,8 +75,8 @@ def classify(work, name, status, log_text, seconds, time_limit):
         outcome = 'detached: ' + detached[0].split(':', 1)[1].strip()
     elif status == 0:
         outcome = 'reached the final load'
-    elif errors:
-        outcome = 'stopped: ' + errors[-1].split(':', 1)[1].strip()
+    elif error:
+        outcome = 'stopped: ' + error
     else:
         outcome = f'FAILED WITHOUT A DIAGNOSIS (exit {status})'
     warned = [l for l in lines if l.startswith('warning:') and 'energy balance' in l]
@@ -111,7 +85,7 @@ def classify(work, name, status, log_text, seconds, time_limit):
         outcome += f'; BALANCE ERROR {worst:.1e} > {BALANCE_LIMIT:g}' + (
             f' (the app warned: {warned[0].split(":", 1)[1].split(" Pi_c0")[0].strip()})' if warned
             else ' WITHOUT A WARNING')
-    acceptable = status is not None and finite and balance_ok and (status == 0 or bool(errors))
+    acceptable = status is not None and finite and balance_ok and (status == 0 or bool(error))
     peak = max((float(r['P_z_nN']) for r in rows if r['stage'] == 'lift'), default=float('nan'))
     return {'case': name, 'status': status, 'outcome': outcome, 'acceptable': acceptable, 'states': len(rows), 'jumps': jumps,
             'last': where, 'P_max': peak, 'balance': worst, 'seconds': seconds}

@@ -25,6 +25,7 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from curves import interpolate, pull_off_summary, read_curve  # noqa: E402
+from scenes import app_diagnosis  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula'))
@@ -89,9 +90,9 @@ def outcome(work, scene):
     if complete(work, scene):
         return 'detached' if pull_off_summary(work, scene)['detached'] else 'final lift reached'
     log = os.path.join(work, scene + '.log')
-    lines = [l for l in open(log).read().splitlines() if l.startswith('spatula: solver failure')] if os.path.exists(log) else []
-    if lines:
-        return 'stopped: ' + lines[-1].split(':', 2)[2].strip() + ' (values up to the last converged state)'
+    diagnosis = app_diagnosis(open(log).read()) if os.path.exists(log) else None
+    if diagnosis:
+        return 'stopped: ' + diagnosis + ' (values up to the last converged state)'
     return 'did not finish (values up to the last converged state)'
 
 

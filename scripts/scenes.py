@@ -1,0 +1,49 @@
+"""Scene files for the benchmarks: one builder for the pull-off and rotation scenes that benchmarks/error_vs_time.py
+and benchmarks/stress_tests.py run, and one reader of the app's diagnosis line."""
+
+
+def parameter_list(name, entries, indent=0):
+    """A Teuchos XML parameter list from a dict: str -> string, bool -> bool, int -> int, float -> double, a dict ->
+    a sublist. Doubles must be given as floats (60.0, not 60): the app's validator rejects an int for a double."""
+    pad = '  ' * indent
+    lines = [f'{pad}<ParameterList name="{name}">']
+    for key, value in entries.items():
+        if isinstance(value, dict):
+            lines.append(parameter_list(key, value, indent + 1))
+            continue
+        kind = {bool: 'bool', int: 'int', float: 'double', str: 'string'}[type(value)]
+        text = str(value).lower() if kind == 'bool' else f'{value:.10g}' if kind == 'double' else str(value)
+        lines.append(f'{pad}  <Parameter name="{key}" type="{kind}" value="{text}"/>')
+    lines.append(f'{pad}</ParameterList>')
+    return '\n'.join(lines)
+
+
+def benchmark_scene(name, *, mesh='coarse', refinement=1, adhesion=None, loading='lift', theta_y=60.0,
+                    final_lift=600.0, rotation_maximum=2.0, lift_maximum=5.0, linear_solver=None, fields=-1):
+    """A frictionless scene on a flat substrate unless `adhesion` (the Adhesion list's entries) says otherwise:
+    rotation to theta_y with zero net force, then (loading 'lift') a lift of final_lift nm beyond the rotated state.
+    Step maxima in deg and nm, minima 0.01. fields: -1 writes no fields, 0 the first and last states only, n every
+    n-th state. The output directory is `name`."""
+    steps = {'Rotation Steps': {'maximum': float(rotation_maximum), 'minimum': 0.01}}
+    load = {'type': loading, 'theta_y': float(theta_y)}
+    if loading == 'lift':
+        load.update({'final lift': float(final_lift), 'final lift relative': True})
+        steps['Lift Steps'] = {'maximum': float(lift_maximum), 'minimum': 0.01}
+    entries = {
+        'Mesh': {'level': mesh, **({'refinement factor': refinement} if refinement != 1 else {})},
+        'Adhesion': {'law': 'frictionless', **(adhesion or {})},
+        'Loading': {**load, **steps},
+        **({'Linear Solver': linear_solver} if linear_solver else {}),
+        'Output': {'directory': name, 'write mesh': fields >= 0, 'field interval': max(fields, 0)},
+    }
+    return parameter_list(name, entries) + '\n'
+
+
+# The lines apps/spatula/main.cpp writes when a run fails (a solver failure, a bad input, any other error).
+DIAGNOSIS_PREFIXES = ('spatula: solver failure', 'spatula: input error', 'spatula: error')
+
+
+def app_diagnosis(log_text):
+    """The app's last failure line (which step, which load, why) without the 'spatula:' prefix; None if there is none."""
+    lines = [l for l in log_text.splitlines() if l.startswith(DIAGNOSIS_PREFIXES)]
+    return lines[-1].split(':', 1)[1].strip() if lines else None
