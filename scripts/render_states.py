@@ -11,7 +11,7 @@ import os
 import sys
 import tempfile
 
-from paraview.simple import (ColorBy, CreateView, GetColorTransferFunction, GetScalarBar, Reflect, Render, SaveScreenshot, Show,
+from paraview.simple import (Clip, ColorBy, CreateView, GetColorTransferFunction, GetScalarBar, Reflect, Render, SaveScreenshot, Show,
                              Text, Xdmf3ReaderS)
 from paraview.simple import _DisableFirstRenderCameraReset
 from PIL import Image
@@ -77,6 +77,23 @@ def panel(time, title, direction, up, focus, scale):
     return Image.open(picture)
 
 
+# The pad is the part of the body near its lowest point; it moves in X as the shaft turns about the end face, so
+# the view from below is framed on it state by state.
+pad = Clip(Input=full)
+pad.ClipType = 'Plane'
+pad.ClipType.Normal = [0.0, 0.0, 1.0]
+pad.Invert = 1   # keep what lies below the plane
+PAD_HEIGHT = 40.0   # nm above the lowest point
+
+
+def pad_frame(time, bounds):
+    pad.ClipType.Origin = [0.0, 0.0, bounds[4] + PAD_HEIGHT]
+    pad.UpdatePipeline(time)
+    low = pad.GetDataInformation().GetBounds()
+    focus = ((low[0] + low[1]) / 2, 0.0, 0.0)
+    return focus, 0.55 * max(low[3] - low[2], (low[1] - low[0]) * height / width)
+
+
 pictures = []
 for time in chosen:
     full.UpdatePipeline(time)
@@ -85,7 +102,8 @@ for time in chosen:
     scale = 0.6 * max(bounds[5] - bounds[4], (bounds[1] - bounds[0]) * height / width)
     pictures.append(panel(time, 'side view from -Y', (0, -1, 0), (0, 0, 1), centre, scale))
     if bottom:   # the pad from below: where it adheres (the paper's lower rows of Figs. 7, 11, 14)
-        pictures.append(panel(time, 'pad from below, -Z', (0, 0, -1), (0, -1, 0), (120.0, 0.0, 0.0), 145.0))
+        focus, scale = pad_frame(time, bounds)
+        pictures.append(panel(time, 'pad from below, -Z', (0, 0, -1), (0, -1, 0), focus, scale))
 
 sheet = Image.new('RGB', (width, height * len(pictures)), 'white')
 for i, picture in enumerate(pictures):
