@@ -53,6 +53,11 @@ void LoadingParameters::declare(Teuchos::ParameterList& loading)
                              "comma-separated inclinations [deg] where a rotation writes checkpoints (e.g. 45,60)");
   auto& jump = parameters::declare_sublist(loading, "Jump", "energy descent past an instability");
   parameters::declare_int(jump, "maximum iterations", 500, "iterations per jump", Range::closed(1, 100000));
+  parameters::declare_double(jump, "step balance tolerance", 1e-4,
+                             "largest energy released by one converged load step, over Pi_c0: a step releasing more "
+                             "crossed a snap (Newton landed on another branch) and is cut back, or at the smallest "
+                             "increment counted as a jump; 0 switches the check off (scenes with adhesion only)",
+                             Range::closed(0.0, 1.0));
   auto& arc = parameters::declare_sublist(loading, "Arc Length", "LOCA arc-length steps (scaled norm)");
   parameters::declare_double(arc, "initial", 0.02, "first step", Range::positive());
   parameters::declare_double(arc, "minimum", 1e-5, "smallest step", Range::positive());
@@ -92,6 +97,7 @@ LoadingParameters LoadingParameters::from(const Teuchos::ParameterList& loading)
   std::sort(p.checkpoints.begin(), p.checkpoints.end());
   const auto& jump = loading.sublist("Jump");
   p.jump.maximum_iterations = jump.get<int>("maximum iterations");
+  p.step_balance_tolerance = jump.get<double>("step balance tolerance");
   const auto& arc = loading.sublist("Arc Length");
   p.arc_length_steps.initial = arc.get<double>("initial");
   p.arc_length_steps.minimum = arc.get<double>("minimum");

@@ -23,6 +23,7 @@ struct LoadingParameters {
   double restart_theta_y = 0.0;           // which one [deg]
   std::vector<double> checkpoints;        // inclinations [deg] at which a rotation leaves checkpoints
   analysis::JumpParameters jump;
+  double step_balance_tolerance = 1e-4;   // over Pi_c0 (JumpParameters holds it in nN nm)
   analysis::ArcLengthParameters arc_length_steps;
 
   static void declare(Teuchos::ParameterList& loading);

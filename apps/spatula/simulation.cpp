@@ -82,7 +82,6 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
   auto model = Teuchos::rcp(new solvers::SpatulaModel(system, linear.lows_factory()));
   solvers::NewtonSolver newton(model, scene.newton, linear);
   analysis::LoadPath path(*model, newton, root ? &out : nullptr, scene.output.convergence_tables);
-  path.set_jump_parameters(scene.loading.jump);
   if (scene.loading.past_instabilities == "jump") path.set_past_folds(analysis::LoadPath::PastFolds::jump);
   if (scene.loading.past_instabilities == "arc-length") path.enable_arc_length(scene.loading.arc_length_steps);
 
@@ -94,6 +93,9 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
     out << "adhesion: " << options.contact->description() << "\n"
         << "  contact area A_c = " << 2.0 * system->contact_area() << " nm^2, Pi_c0 = A_c w_adh = " << reference_energy
         << " nN nm = " << reference_energy / young << " E R0^3\n";
+  auto jump = scene.loading.jump;   // the step balance check in the half model's energy (adhesion only)
+  jump.step_balance_tolerance = options.contact ? scene.loading.step_balance_tolerance * reference_energy / 2.0 : 0.0;
+  path.set_jump_parameters(jump);
   std::unique_ptr<CurveWriter> curve;
   const char* stage = "rotation";
   auto write_fields = [&](const discretization::Vector& x, double time) {

@@ -67,19 +67,19 @@ LoadPath::LoadPath(solvers::SpatulaModel& model, const solvers::NewtonSolver& ne
 {
   auto& system = model_.system();
   system.set_control({{true, true, true}});
-  points_.push_back(measure(0, -1));
+  points_.push_back(measure(*x_, 0, -1));
   previous_->assign(*x_);
 }
 
-LoadPoint LoadPath::measure(int iterations, int negative_pivots)
+LoadPoint LoadPath::measure(const Vector& x, int iterations, int negative_pivots) const
 {
   auto& system = model_.system();
-  const auto evaluation = system.evaluate(*x_, nullptr, false);
+  const auto evaluation = system.evaluate(x, nullptr, false);
   LoadPoint point;
   point.step = static_cast<int>(points_.size());
-  point.rotation = system.master(*x_, Master::rotation);
-  point.lift = system.master(*x_, Master::lift);
-  point.slide = system.master(*x_, Master::slide);
+  point.rotation = system.master(x, Master::rotation);
+  point.lift = system.master(x, Master::lift);
+  point.slide = system.master(x, Master::slide);
   point.moment = evaluation.master_residual[0];
   point.force = evaluation.master_residual[1];
   point.slide_force = evaluation.master_residual[2];
@@ -172,13 +172,44 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
       previous_increment_ = 0.0;   // no predictor after a failure
       continue;
     }
+    const int iterations = result.iterations.empty() ? 0 : result.iterations.back().iteration;
+    const int pivots = result.iterations.empty() ? -1 : result.iterations.back().negative_pivots;
+    auto point = measure(*trial, iterations, pivots);
+    // The energy the step released: work of the reactions minus the change of Pi_int + Pi_c. Near zero on a
+    // smooth path; large when Newton crossed a snap within the step and landed on another branch.
+    const auto& last = points_.back();
+    const double released = (point.external_work - last.external_work) -
+                            (point.internal_energy + point.contact_energy - last.internal_energy - last.contact_energy);
+    if (jump_.step_balance_tolerance > 0.0 && std::abs(released) > jump_.step_balance_tolerance) {
+      if (increment * steps.cut >= steps.minimum * unit * (1 - 1e-12)) {
+        if (log_) *log_ << table.str() << "  step to " << name << " = " << load_text((value + direction * increment) / unit)
+                        << " converged on another branch (the step released " << load_text(2.0 * released)
+                        << " nN nm, full spatula): a snap within the step; cutting the increment\n";
+        increment *= steps.cut;
+        previous_increment_ = 0.0;
+        continue;
+      }
+      if (past_folds_ == PastFolds::stop) {
+        Failure failure;
+        failure.step = static_cast<int>(points_.size());
+        failure.load = (value + direction * increment) / unit;
+        failure.smallest_increment = increment / unit;
+        failure.reason = "a snap within the smallest step (it released " + load_text(2.0 * released) +
+                         " nN nm, full spatula) and instabilities are set to stop";
+        return failure;
+      }
+      point.after_jump = true;   // the smallest step still crosses the snap: it is the jump
+      point.released = released;
+      point.dissipated += released;
+      if (log_) *log_ << "  snap within the smallest step to " << name << " = "
+                      << load_text((value + direction * increment) / unit) << ": counted as a jump, released "
+                      << load_text(2.0 * released) << " nN nm (full spatula)\n";
+    }
     previous_->assign(*x_);
     x_->assign(*trial);
     previous_increment_ = increment;
     value += direction * increment;
-    const int iterations = result.iterations.empty() ? 0 : result.iterations.back().iteration;
-    const int pivots = result.iterations.empty() ? -1 : result.iterations.back().negative_pivots;
-    points_.push_back(measure(iterations, pivots));
+    points_.push_back(point);
     if (log_ && tables_) *log_ << table.str();
     if (detachment_test_ && detachment_test_(points_.back())) detached_ = true;
     if (on_point) on_point(points_.back(), *x_);
@@ -192,7 +223,7 @@ void LoadPath::accept(const Vector& x, int iterations, int negative_pivots, cons
   previous_->assign(*x_);
   x_->assign(x);
   previous_increment_ = 0.0;
-  points_.push_back(measure(iterations, negative_pivots));
+  points_.push_back(measure(*x_, iterations, negative_pivots));
   if (on_point) on_point(points_.back(), *x_);
 }
 
@@ -219,7 +250,7 @@ void LoadPath::restart(const Vector& x, const LoadPoint& point)
   previous_->assign(x);
   previous_increment_ = 0.0;
   points_.clear();
-  auto measured = measure(point.newton_iterations, point.negative_pivots);
+  auto measured = measure(*x_, point.newton_iterations, point.negative_pivots);
   measured.step = point.step;
   measured.external_work = point.external_work;
   measured.dissipated = point.dissipated;
@@ -240,64 +271,114 @@ std::variant<int, std::string> LoadPath::descend(Vector& x)
   };
   double eta = 0.0, scale = 0.0;
   int iteration = 0;
-  for (; iteration < jump_.maximum_iterations; ++iteration) {
-    system.set_damping(eta, Teuchos::rcpFromRef(x));   // anchored at x: a pure shift of the tangent, f unchanged
-    const auto evaluation = system.evaluate(x, f.get(), true);
-    system.set_damping(0.0, Teuchos::null);
-    if (!evaluation.admissible) return std::string("an element inverted during the energy descent");
-    if (scale == 0.0) scale = system.mean_diagonal();
-    int negative = 0;
-    try {
-      mumps.factor(*system.jacobian());
-      negative = mumps.statistics().negative_pivots;
-    } catch (const std::exception&) {
-      negative = 1;   // singular: treat like indefinite
-    }
-    if (negative > 0) {   // not a descent direction yet: shift more
-      eta = eta == 0.0 ? 1e-6 * scale : jump_.shift_growth * eta;
-      continue;
-    }
-    const double residual = f->norm2();
-    // Near a stable minimum (positive definite tangent, small gradient): plain Newton finishes below. The energy
-    // alone cannot resolve the last digits (its changes fall below its rounding), the gradient can.
-    if (eta == 0.0 && residual < 1e-3) break;
-    mumps.apply(*f, *direction);
-    direction->scale(-1.0);
-    const double slope = f->dot(*direction);
-    bool admissible = true;
-    const double energy = evaluation.internal_energy + evaluation.contact_energy;
-    // Line search on Pi with expansion.
-    double step = 1.0, best_step = 0.0, best_energy = energy;
-    for (int trial_count = 0; trial_count < 30; ++trial_count) {
-      trial->update(1.0, x, step, *direction, 0.0);
-      const double value_at = energy_at(*trial, admissible);
-      const bool sufficient = admissible && value_at <= energy + 1e-4 * step * slope;
-      if (sufficient && value_at < best_energy) {
-        best_energy = value_at;
-        best_step = step;
-        if (step >= 1.0 && step < 64.0) {   // still descending: try further
-          step *= 2.0;
-          continue;
-        }
-        break;
+  // Where the iterations went (for the diagnosis of a descent that does not settle), and a table of them.
+  int indefinite = 0, no_decrease = 0, accepted = 0;
+  bool unshifted_tried = false;   // at the current state, with a small gradient
+  auto start = system.create_vector();
+  start->assign(x);
+  std::ostringstream table;
+  table << std::scientific << std::setprecision(2);
+  if (tables_) table << "  descent  iteration  eta/scale  neg.piv   |f| [nN]       step  Pi [nN nm]\n";
+  auto row = [&](int negative, double residual, double step, double energy) {
+    if (!tables_) return;
+    table << "  descent  " << std::setw(9) << iteration << "  " << std::setw(9) << eta / scale << "  " << std::setw(7)
+          << negative << "  " << std::setw(9) << residual << "  " << std::setw(9) << step << "  "
+          << std::setprecision(8) << energy << std::setprecision(2) << "\n";
+  };
+  // After Newton failed to confirm a state with a small gradient (just past a fold the gradient is small but no
+  // equilibrium is near), the descent goes on without that shortcut.
+  bool small_gradient_ends = true;
+  auto confirmed = system.create_vector();
+  for (;;) {
+    for (; iteration < jump_.maximum_iterations; ++iteration) {
+      system.set_damping(eta, Teuchos::rcpFromRef(x));   // anchored at x: a pure shift of the tangent, f unchanged
+      const auto evaluation = system.evaluate(x, f.get(), true);
+      system.set_damping(0.0, Teuchos::null);
+      if (!evaluation.admissible) return std::string("an element inverted during the energy descent");
+      if (scale == 0.0) scale = system.mean_diagonal();
+      const double energy = evaluation.internal_energy + evaluation.contact_energy;
+      const double residual = f->norm2();
+      int negative = 0;
+      try {
+        mumps.factor(*system.jacobian());
+        negative = mumps.statistics().negative_pivots;
+      } catch (const std::exception&) {
+        negative = 1;   // singular: treat like indefinite
       }
-      if (best_step > 0.0) break;   // the expansion went too far: keep the best
-      step *= 0.5;
+      if (negative > 0) {   // not a descent direction yet: shift more
+        row(negative, residual, 0.0, energy);
+        ++indefinite;
+        eta = eta == 0.0 ? 1e-6 * scale : jump_.shift_growth * eta;
+        continue;
+      }
+      // Near a stable minimum (positive definite tangent, small gradient): plain Newton finishes below. The energy
+      // alone cannot resolve the last digits (its changes fall below its rounding), the gradient can. A small gradient
+      // found with a shift is tested once without it: is the unshifted tangent positive definite there? (Without this
+      // a descent that has reached the minimum keeps raising the shift, since no step can lower Pi any more.)
+      if (small_gradient_ends && residual < 1e-3 && (eta == 0.0 || !unshifted_tried)) {
+        row(negative, residual, 0.0, energy);
+        if (eta == 0.0) break;
+        unshifted_tried = true;
+        eta = 0.0;
+        continue;
+      }
+      mumps.apply(*f, *direction);
+      direction->scale(-1.0);
+      const double slope = f->dot(*direction);
+      bool admissible = true;
+      // Line search on Pi with expansion.
+      double step = 1.0, best_step = 0.0, best_energy = energy;
+      for (int trial_count = 0; trial_count < 30; ++trial_count) {
+        trial->update(1.0, x, step, *direction, 0.0);
+        const double value_at = energy_at(*trial, admissible);
+        const bool sufficient = admissible && value_at <= energy + 1e-4 * step * slope;
+        if (sufficient && value_at < best_energy) {
+          best_energy = value_at;
+          best_step = step;
+          if (step >= 1.0 && step < 64.0) {   // still descending: try further
+            step *= 2.0;
+            continue;
+          }
+          break;
+        }
+        if (best_step > 0.0) break;   // the expansion went too far: keep the best
+        step *= 0.5;
+      }
+      row(negative, residual, best_step, best_energy);
+      if (best_step == 0.0 && eta == 0.0) break;   // a plain Newton step and no measurable decrease: let Newton finish
+      if (best_step == 0.0) {   // no decrease along this direction: stiffen the shift
+        ++no_decrease;
+        eta = eta == 0.0 ? 1e-6 * scale : jump_.shift_growth * eta;
+        continue;
+      }
+      ++accepted;
+      unshifted_tried = false;
+      x.update(best_step, *direction, 1.0);
+      eta = best_step >= 1.0 ? 0.25 * eta : 2.0 * eta;
+      if (eta < 1e-9 * scale) eta = 0.0;
     }
-    if (best_step == 0.0 && eta == 0.0) break;   // a plain Newton step and no measurable decrease: let Newton finish
-    if (best_step == 0.0) {   // no decrease along this direction: stiffen the shift
-      eta = eta == 0.0 ? 1e-6 * scale : jump_.shift_growth * eta;
-      continue;
+    if (log_ && tables_) *log_ << table.str();
+    table.str("");
+    if (iteration >= jump_.maximum_iterations) {
+      start->update(1.0, x, -1.0);
+      std::ostringstream reason;
+      reason << "no stable state within " << jump_.maximum_iterations << " iterations (" << accepted
+             << " descent steps moved the state by at most " << std::setprecision(3) << start->normInf() << " nm; "
+             << indefinite << " shifts for an indefinite tangent, " << no_decrease << " for no decrease of Pi; final shift "
+             << eta / scale << " x the mean diagonal)";
+      return reason.str();
     }
-    x.update(best_step, *direction, 1.0);
-    eta = best_step >= 1.0 ? 0.25 * eta : 2.0 * eta;
-    if (eta < 1e-9 * scale) eta = 0.0;
+    confirmed->assign(x);
+    const auto plain = newton_.solve(*confirmed, nullptr);
+    if (plain.converged) {
+      x.assign(*confirmed);
+      return iteration + (plain.iterations.empty() ? 0 : plain.iterations.back().iteration);
+    }
+    if (!small_gradient_ends)
+      return "Newton did not confirm the state the energy descent reached (" + plain.failure + ")";
+    small_gradient_ends = false;
+    if (tables_) table << "  descent  (Newton did not confirm: " << plain.failure << "; descending further)\n";
   }
-  if (iteration >= jump_.maximum_iterations)
-    return "no stable state within " + std::to_string(jump_.maximum_iterations) + " iterations";
-  const auto plain = newton_.solve(x, nullptr);
-  if (!plain.converged) return "Newton did not confirm the state the energy descent reached (" + plain.failure + ")";
-  return iteration + (plain.iterations.empty() ? 0 : plain.iterations.back().iteration);
 }
 
 std::optional<Failure> LoadPath::jump(Master controlled, double value, const Callback& on_point)
@@ -310,10 +391,14 @@ std::optional<Failure> LoadPath::jump(Master controlled, double value, const Cal
   system.set_master(*x, controlled, value);
   const auto outcome = descend(*x);
   if (const auto* reason = std::get_if<std::string>(&outcome)) {
+    // How far the descent got: the share of the adhesion energy its last state still holds.
+    const auto last = system.evaluate(*x, nullptr, false);
+    const double kept = before.contact_energy != 0.0 ? last.contact_energy / before.contact_energy : 1.0;
     Failure failure;
     failure.step = static_cast<int>(points_.size());
     failure.load = value;
-    failure.reason = "jump past the instability failed: " + *reason;
+    failure.reason = "jump past the instability failed: " + *reason + "; the descent's last state kept " +
+                     std::to_string(static_cast<int>(std::lround(100.0 * kept))) + " % of the adhesion energy";
     return failure;
   }
   const int iterations = std::get<int>(outcome);

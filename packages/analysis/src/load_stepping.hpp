@@ -53,10 +53,17 @@ struct LoadPoint {
 // LDL^T factorization shows no negative pivot, lowered again after good steps) and a line search on Pi that also
 // expands the step (negative curvature means going further lowers Pi more). It ends on a stable state on the far
 // side of the snap, confirmed by plain Newton, like a quasi-static snap with viscous dissipation: the energy
-// released in the jump is reported.
+// released in the jump is reported. A small gradient ends the descent only if plain Newton then converges (just
+// past a fold the gradient is small too, with no equilibrium near); with a shift, it is first re-tested unshifted.
+//
+// A snap can also hide inside a load step: Newton converges, but on another branch, and the work of the reactions
+// (trapezoidal rule) no longer matches the change of Pi_int + Pi_c over the step. A converged step whose imbalance
+// |Delta W - Delta Pi| exceeds step_balance_tolerance is therefore cut back like a failed one; at the smallest
+// increment it is accepted as a jump, the imbalance being the energy it released.
 struct JumpParameters {
   int maximum_iterations = 500;
   double shift_growth = 4.0;      // eta factor while the shifted tangent is indefinite
+  double step_balance_tolerance = 0.0;   // [nN nm, half model]; 0: not checked
 };
 
 // Arc-length continuation (LOCA) in the controlled master, used to go round folds of the load path.
@@ -127,7 +134,7 @@ public:
   void accept(const Vector& x, int iterations, int negative_pivots, const Callback& on_point);
 
 private:
-  LoadPoint measure(int iterations, int negative_pivots);
+  LoadPoint measure(const Vector& x, int iterations, int negative_pivots) const;
   std::variant<int, std::string> descend(Vector& x);
 
   solvers::SpatulaModel& model_;
