@@ -354,8 +354,9 @@ def main():
         save(path, results)
     for s in arguments.set:
         wanted += [configuration(o) for o in SETS[s]]
-    # cheapest first: the medium mesh last, then the refined coarse mesh
-    wanted.sort(key=lambda c: (c['level'] == 'medium', c['refinement']))
+    # the reference runs first (every error needs them), then the cheapest first
+    references = {name(configuration(o)) for o in REFERENCE}
+    wanted.sort(key=lambda c: (name(c) not in references, c['level'] == 'medium', c['refinement']))
     for c in wanted:
         n = name(c)
         if n in results or arguments.no_run:
