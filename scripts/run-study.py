@@ -87,9 +87,14 @@ def complete(work, scene):
 def outcome(work, scene):
     """How a pull-off ended: detached, or stopped with the app's diagnosis (Delta u_z and Delta Pi_ext are then
     taken to the last converged state, just before the snap the jump could not follow)."""
-    if complete(work, scene):
-        return 'detached' if pull_off_summary(work, scene)['detached'] else 'final lift reached'
     log = os.path.join(work, scene + '.log')
+    if complete(work, scene):
+        summary = pull_off_summary(work, scene)
+        if 'detached' not in summary:   # the run ended during its rotation: the app detected detachment there
+            lines = [l for l in open(log).read().splitlines() if l.startswith('detachment:')] if os.path.exists(log) else []
+            return 'detached during the rotation, before the lift' + (f' ({lines[-1]})' if lines else '')
+        return 'detached' if summary['detached'] else 'final lift reached'
+
     diagnosis = app_diagnosis(open(log).read()) if os.path.exists(log) else None
     if diagnosis:
         return 'stopped: ' + diagnosis + ' (values up to the last converged state)'
