@@ -7,24 +7,12 @@
 # usage: descent_settles.sh <spatula>
 set -eu
 app=$1
+source "$(dirname "$0")/rotation_scene.sh"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
-cat > q1c1.xml <<XML
-<ParameterList>
-  <ParameterList name="Adhesion"><Parameter name="law" type="string" value="frictionless"/>
-    <Parameter name="enrichment" type="string" value="Q1C1"/><Parameter name="quadrature" type="int" value="3"/>
-  </ParameterList>
-  <ParameterList name="Loading">
-    <Parameter name="type" type="string" value="rotation"/>
-    <Parameter name="theta_y" type="double" value="30"/>
-    <ParameterList name="Rotation Steps"><Parameter name="maximum" type="double" value="2"/>
-      <Parameter name="minimum" type="double" value="0.01"/></ParameterList>
-  </ParameterList>
-  <ParameterList name="Output"><Parameter name="directory" type="string" value="q1c1"/>
-    <Parameter name="write mesh" type="bool" value="false"/></ParameterList>
-</ParameterList>
-XML
+rotation_scene q1c1 30 '<Parameter name="enrichment" type="string" value="Q1C1"/>
+    <Parameter name="quadrature" type="int" value="3"/>' > q1c1.xml
 "$app" q1c1.xml > q1c1.log
 /usr/bin/python3 - <<'PY'
 import csv, re

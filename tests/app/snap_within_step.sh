@@ -7,25 +7,12 @@
 # usage: snap_within_step.sh <spatula>
 set -eu
 app=$1
+source "$(dirname "$0")/rotation_scene.sh"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
-cat > strong.xml <<XML
-<ParameterList>
-  <ParameterList name="Adhesion"><Parameter name="law" type="string" value="frictionless"/>
-    <Parameter name="specification" type="string" value="normalized"/>
-    <Parameter name="gamma_W" type="double" value="85.2727"/><Parameter name="gamma_L" type="double" value="2.5"/>
-  </ParameterList>
-  <ParameterList name="Loading">
-    <Parameter name="type" type="string" value="rotation"/>
-    <Parameter name="theta_y" type="double" value="27"/>
-    <ParameterList name="Rotation Steps"><Parameter name="maximum" type="double" value="2"/>
-      <Parameter name="minimum" type="double" value="0.01"/></ParameterList>
-  </ParameterList>
-  <ParameterList name="Output"><Parameter name="directory" type="string" value="strong"/>
-    <Parameter name="write mesh" type="bool" value="false"/></ParameterList>
-</ParameterList>
-XML
+rotation_scene strong 27 '<Parameter name="specification" type="string" value="normalized"/>
+    <Parameter name="gamma_W" type="double" value="85.2727"/><Parameter name="gamma_L" type="double" value="2.5"/>' > strong.xml
 "$app" strong.xml > strong.log
 grep -q "a snap within the step" strong.log
 /usr/bin/python3 - <<'PY'

@@ -1,0 +1,19 @@
+# Sourced by the app tests: rotation_scene <directory> <final theta_y> <extra Adhesion parameters> prints a coarse
+# frictionless rotation scene (steps of at most 2 deg, smallest 0.01, no mesh output) to stdout.
+rotation_scene() {
+  cat <<XML
+<ParameterList>
+  <ParameterList name="Adhesion"><Parameter name="law" type="string" value="frictionless"/>
+    $3
+  </ParameterList>
+  <ParameterList name="Loading">
+    <Parameter name="type" type="string" value="rotation"/>
+    <Parameter name="theta_y" type="double" value="$2"/>
+    <ParameterList name="Rotation Steps"><Parameter name="maximum" type="double" value="2"/>
+      <Parameter name="minimum" type="double" value="0.01"/></ParameterList>
+  </ParameterList>
+  <ParameterList name="Output"><Parameter name="directory" type="string" value="$1"/>
+    <Parameter name="write mesh" type="bool" value="false"/></ParameterList>
+</ParameterList>
+XML
+}
