@@ -41,7 +41,7 @@ STUDIES = {
 }
 STUDIES['all'] = sorted({scene for scenes in STUDIES.values() for scene in scenes},
                         key=lambda s: (not s.startswith('peel'), s))
-DEPENDS = {f'pull-off-{t}': 'peel-rotation' for t in (45, 60, 75, 90)}
+DEPENDS = {f'pull-off-{t}': 'peel-rotation' for t in (45, 60, 75, 90, '60-stiction')}
 # The mesh level each study runs on by default (None: the level written in the scene file).
 STUDY_LEVEL = {'stiction': 'coarse', 'gamma-W': 'coarse', 'gamma-L': 'coarse'}
 LEVELS = ('coarse', 'medium', 'fine')

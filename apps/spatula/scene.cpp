@@ -56,6 +56,15 @@ Scene read_scene(Teuchos::ParameterList user)
   scene.linear_solver = solvers::LinearSolverParameters::from(user.sublist("Linear Solver"));
   scene.newton = solvers::NewtonParameters::from(user.sublist("Nonlinear Solver"));
   scene.adhesion = contact::AdhesionParameters::from(user.sublist("Adhesion"), scene.material.young);
+  if (scene.adhesion.settings.anchor_at_restart) {
+    if (scene.loading.restart_file.empty())
+      throw parameters::InputError("parameter 'Adhesion/stiction anchors' = 'restart state' needs a state to restart "
+                                   "from: 'Loading/restart file' is empty");
+    if (!scene.loading.checkpoints.empty())
+      throw parameters::InputError("parameter 'Adhesion/stiction anchors' = 'restart state' with 'Loading/checkpoints "
+                                   "at theta_y': checkpoints do not store the anchors, a restart from them would "
+                                   "measure the travel from another state");
+  }
   scene.validated = user;
   return scene;
 }

@@ -186,10 +186,12 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
   if (!loading.restart_file.empty()) {
     auto x = system->create_vector();
     const auto history = read_checkpoint(loading.restart_file, loading.restart_theta_y, *system, *x, scene);
+    if (adhesion.anchor_at_restart) system->set_contact_anchors(*x);   // r_a = 0 here: the same energy and forces
     path.restart(*x, history);
     if (root)
       out << "restart from " << checkpoint_label(loading.restart_theta_y) << " of " << loading.restart_file
-          << " (step " << history.step << ", u_z " << history.lift << " nm)\n";
+          << " (step " << history.step << ", u_z " << history.lift << " nm)"
+          << (adhesion.anchor_at_restart ? "; stiction anchors set at this state" : "") << "\n";
   }
   if (root) curve->write(path.last(), stage, theta_s);
   write_fields(path.state(), (theta_s + path.last().rotation) / degree);

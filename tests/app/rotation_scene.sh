@@ -1,14 +1,15 @@
-# Sourced by the app tests: rotation_scene <directory> <final theta_y> <extra Adhesion parameters> prints a coarse
-# frictionless rotation scene (steps of at most 2 deg, smallest 0.01, no mesh output) to stdout.
+# Sourced by the app tests: rotation_scene <directory> <final theta_y> [<extra Adhesion parameters> [<extra Loading
+# parameters>]] prints a coarse frictionless rotation scene (steps of at most 2 deg, smallest 0.01, no mesh output).
 rotation_scene() {
   cat <<XML
 <ParameterList>
   <ParameterList name="Adhesion"><Parameter name="law" type="string" value="frictionless"/>
-    $3
+    ${3:-}
   </ParameterList>
   <ParameterList name="Loading">
     <Parameter name="type" type="string" value="rotation"/>
     <Parameter name="theta_y" type="double" value="$2"/>
+    ${4:-}
     <ParameterList name="Rotation Steps"><Parameter name="maximum" type="double" value="2"/>
       <Parameter name="minimum" type="double" value="0.01"/></ParameterList>
   </ParameterList>

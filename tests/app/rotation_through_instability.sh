@@ -2,28 +2,17 @@
 # The coarse spatula (Q1C2 adhesion) rotated from theta_s to 36 deg passes its first instability: the moment drops,
 # the interface takes up energy, the jump's released energy is recorded, and Pi_ext = Pi_int + Pi_sa + D holds to
 # 2e-3 Pi_c0 at every state. Then restart: the same rotation split at a checkpoint (12 deg) ends where the
-# continuous one does. usage: rotation_through_instability.sh <spatula>
+# continuous one does; and a lift from that checkpoint with the stiction law anchored there starts from the
+# frictionless state's energy, converges, and is stiffer than the frictionless lift (the pad cannot slide).
+# usage: rotation_through_instability.sh <spatula>
 set -eu
 app=$1
+here=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
-scene() {   # directory, final theta_y, extra Loading parameters
-  cat <<XML
-<ParameterList>
-  <ParameterList name="Adhesion"><Parameter name="law" type="string" value="frictionless"/></ParameterList>
-  <ParameterList name="Loading">
-    <Parameter name="type" type="string" value="rotation"/>
-    <Parameter name="theta_y" type="double" value="$2"/>
-    $3
-    <ParameterList name="Rotation Steps"><Parameter name="initial" type="double" value="1"/>
-      <Parameter name="maximum" type="double" value="2"/><Parameter name="minimum" type="double" value="0.01"/></ParameterList>
-  </ParameterList>
-  <ParameterList name="Output"><Parameter name="directory" type="string" value="$1"/></ParameterList>
-</ParameterList>
-XML
-}
-scene through 36 "" > through.xml
+source "$here/rotation_scene.sh"
+rotation_scene through 36 > through.xml
 "$app" through.xml > through.log
 /usr/bin/python3 - <<'PY'
 import csv
@@ -44,9 +33,9 @@ print(f'instability at theta_y {float(before["theta_y_deg"]):.2f} -> {float(afte
       f'M_y {m0:.0f} -> {m1:.0f} nN nm, Pi_sa/Pi_c0 {sa0:.3f} -> {sa1:.3f}, released '
       f'{float(after["dissipated_per_Pi_c0"]):.3f} Pi_c0; balance error <= {worst:.1e} Pi_c0')
 PY
-scene continuous 20 "" > continuous.xml
-scene first 12 '<Parameter name="checkpoints at theta_y" type="string" value="12"/>' > first.xml
-scene second 20 '<Parameter name="restart file" type="string" value="first/checkpoints.h5"/>
+rotation_scene continuous 20 > continuous.xml
+rotation_scene first 12 '' '<Parameter name="checkpoints at theta_y" type="string" value="12"/>' > first.xml
+rotation_scene second 20 '' '<Parameter name="restart file" type="string" value="first/checkpoints.h5"/>
     <Parameter name="restart theta_y" type="double" value="12"/>' > second.xml
 "$app" continuous.xml > continuous.log
 "$app" first.xml > first.log
@@ -63,4 +52,46 @@ for key in ('theta_y_deg', 'M_y_nNnm', 'u_z_nm', 'Pi_int_1e-18J', 'Pi_sa_1e-18J'
 x, y = float(a['Pi_ext_1e-18J']), float(b['Pi_ext_1e-18J'])
 assert abs(x - y) <= 2e-3 * abs(x), ('Pi_ext', x, y)
 print(f'restart at 12 deg reproduces the continuous run at 20 deg: M_y {float(b["M_y_nNnm"]):.4f} nN nm')
+PY
+lift() {   # directory, law, extra Adhesion parameters: 2 nm of lift in 1 nm steps from the 12 deg checkpoint
+  cat <<XML
+<ParameterList>
+  <ParameterList name="Adhesion"><Parameter name="law" type="string" value="$2"/>$3</ParameterList>
+  <ParameterList name="Loading">
+    <Parameter name="type" type="string" value="lift"/>
+    <Parameter name="theta_y" type="double" value="12"/>
+    <Parameter name="restart file" type="string" value="first/checkpoints.h5"/>
+    <Parameter name="restart theta_y" type="double" value="12"/>
+    <Parameter name="final lift" type="double" value="2"/>
+    <Parameter name="final lift relative" type="bool" value="true"/>
+    <ParameterList name="Lift Steps"><Parameter name="initial" type="double" value="1"/>
+      <Parameter name="maximum" type="double" value="1"/></ParameterList>
+  </ParameterList>
+  <ParameterList name="Output"><Parameter name="directory" type="string" value="$1"/>
+    <Parameter name="write mesh" type="bool" value="false"/></ParameterList>
+</ParameterList>
+XML
+}
+lift frictionless frictionless "" > frictionless.xml
+lift stiction stiction '<Parameter name="stiction anchors" type="string" value="restart state"/>' > stiction.xml
+"$app" frictionless.xml > frictionless.log
+"$app" stiction.xml > stiction.log
+grep -q "stiction anchors set at this state" stiction.log
+/usr/bin/python3 - <<'PY'
+import csv
+a = list(csv.DictReader(open('frictionless/curve.csv')))
+b = list(csv.DictReader(open('stiction/curve.csv')))
+# The restart state: no tangential travel yet, so the stiction law stores the frictionless energy there.
+for key in ('Pi_sa_per_Pi_c0', 'Pi_int_1e-18J', 'M_y_nNnm'):
+    x, y = float(a[0][key]), float(b[0][key])
+    assert abs(x - y) <= 1e-9 * max(1.0, abs(x)), (key, x, y)
+for rows in (a, b):
+    assert abs(float(rows[-1]['u_z_nm']) - float(rows[0]['u_z_nm']) - 2.0) < 1e-9, 'final lift not reached'
+    assert all(r['after_jump'] == '0' for r in rows), 'unexpected jump'
+worst = max(float(r['balance_error_per_Pi_c0']) for r in b)
+assert worst < 2e-3, worst
+pa, pb = float(a[1]['P_z_nN']), float(b[1]['P_z_nN'])
+assert pb > 1.5 * pa > 0.0, (pa, pb)
+print(f'stiction anchored at the 12 deg checkpoint: Pi_sa continuous at the switch, P_z after 1 nm {pb:.3f} nN '
+      f'(frictionless {pa:.3f} nN), balance error <= {worst:.1e} Pi_c0')
 PY

@@ -45,6 +45,11 @@ void AdhesionParameters::declare(Teuchos::ParameterList& adhesion)
   parameters::declare_bool(adhesion, "skip distant faces", true,
                            "leave out faces whose every point is beyond the cut-off (false: integrate every face; "
                            "for measuring what the skip saves)");
+  parameters::declare_string(adhesion, "stiction anchors", "undeformed",
+                             "where the stiction law measures a point's tangential travel from: its position in the "
+                             "undeformed spatula, or in the state the run restarts from ('Loading/restart file'; the "
+                             "paper's Fig. 9 switches stiction on for the pull-off from the pre-rotated state)",
+                             {"undeformed", "restart state"});
   auto& rough = parameters::declare_sublist(adhesion, "Rough Substrate", "Gaussian asperities on a triangular grid");
   parameters::declare_double(rough, "z0", 4.0, "asperity height [nm]", Range::non_negative());
   parameters::declare_double(rough, "h", 20.0, "asperity width [nm]", Range::positive());
@@ -65,6 +70,7 @@ AdhesionParameters AdhesionParameters::from(const Teuchos::ParameterList& adhesi
   s.enrichment = discretization::enrichment_from_name(adhesion.get<std::string>("enrichment"));
   s.quadrature = adhesion.get<int>("quadrature");
   s.skip_distant_faces = adhesion.get<bool>("skip distant faces");
+  s.anchor_at_restart = adhesion.get<std::string>("stiction anchors") == "restart state";
   auto& lj = s.lennard_jones;
   if (adhesion.get<std::string>("specification") == "physical") {
     lj.hamaker = 0.1 * adhesion.get<double>("A_H");   // 1e-19 J = 0.1 nN nm

@@ -26,6 +26,7 @@ struct AdhesionSettings {
   double substrate_height = 0.0;       // flat: the plane z = -r_eq, so the undeformed pad is traction-free
   bool conform = false;                // rough: start from the pad pressed onto the asperities
   bool skip_distant_faces = true;      // integrate only faces with a point within the cut-off
+  bool anchor_at_restart = false;      // stiction: travel measured from the restart state (else the undeformed one)
 
   double gamma_W(double young) const;
   double gamma_L() const { return 1.0 / lennard_jones.r0; }

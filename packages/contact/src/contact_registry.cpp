@@ -22,7 +22,10 @@ std::string describe(const AdhesionSettings& s)
          std::to_string(s.lennard_jones.r_cut) + " nm), " +
          (s.enrichment == discretization::Enrichment::q1c2 ? "Q1C2" : "Q1C1") + ", " + std::to_string(s.quadrature) +
          "x" + std::to_string(s.quadrature) + " points per face" +
-         (s.skip_distant_faces ? "" : ", every face integrated");
+         (s.skip_distant_faces ? "" : ", every face integrated") +
+         (s.law == "stiction" ? (s.anchor_at_restart ? ", travel measured from the restart state"
+                                                     : ", travel measured from the undeformed state")
+                              : "");
 }
 
 std::shared_ptr<const discretization::ContactModel> frictionless(const AdhesionSettings& s)

@@ -39,14 +39,18 @@ void face_state(double X[Surface::nodes][3], double u[Surface::nodes][3])
   }
 }
 
+// Residual and tangent against central differences; the anchors are the reference positions moved by `shift`.
 template <class Surface, class Integrand>
-void expect_consistent(const Integrand& integrand, double lift = 0.0)
+void expect_consistent(const Integrand& integrand, double lift = 0.0, const double shift[3] = nullptr)
 {
   constexpr int n = Surface::nodes, dofs = 3 * n;
-  double X[n][3], u[n][3], r[dofs], K[dofs][dofs];
+  double X[n][3], A[n][3], u[n][3], r[dofs], K[dofs][dofs];
   face_state<Surface>(X, u);
-  for (int k = 0; k < n; ++k) u[k][2] += lift;
-  const auto result = elements::contact_face<Surface>(integrand, X, u, 5, r, K);
+  for (int k = 0; k < n; ++k) {
+    u[k][2] += lift;
+    for (int i = 0; i < 3; ++i) A[k][i] = X[k][i] + (shift ? shift[i] : 0.0);
+  }
+  const auto result = elements::contact_face<Surface>(integrand, X, A, u, 5, r, K);
   ASSERT_GT(result.active_points, 0);
   const double h = 1e-7;
   double worst_r = 0.0, worst_K = 0.0, largest_r = 0.0, largest_K = 0.0;
@@ -56,8 +60,8 @@ void expect_consistent(const Integrand& integrand, double lift = 0.0)
       for (int i = 0; i < 3; ++i) up[k][i] = um[k][i] = u[k][i];
     up[q / 3][q % 3] += h;
     um[q / 3][q % 3] -= h;
-    const auto plus = elements::contact_face<Surface>(integrand, X, up, 5, rp);
-    const auto minus = elements::contact_face<Surface>(integrand, X, um, 5, rm);
+    const auto plus = elements::contact_face<Surface>(integrand, X, A, up, 5, rp);
+    const auto minus = elements::contact_face<Surface>(integrand, X, A, um, 5, rm);
     worst_r = std::max(worst_r, std::abs((plus.energy - minus.energy) / (2 * h) - r[q]));
     largest_r = std::max(largest_r, std::abs(r[q]));
     for (int p = 0; p < dofs; ++p) {
@@ -96,6 +100,40 @@ TEST(ContactFace, StictionTangents)
   elements::StictionIntegrand integrand{{lj, -lj.equilibrium_gap()}};
   expect_consistent<elements::Quad4Surface>(integrand);
   expect_consistent<elements::Quad9Surface>(integrand);
+}
+
+TEST(ContactFace, StictionTangentsWithMovedAnchors)
+{
+  const auto lj = law();
+  elements::StictionIntegrand integrand{{lj, -lj.equilibrium_gap()}};
+  const double shift[3] = {0.3, -0.2, 0.7};   // anchored at a deformed state: travel of a few tenths of a nm
+  expect_consistent<elements::Quad4Surface>(integrand, 0.0, shift);
+  expect_consistent<elements::Quad9Surface>(integrand, 0.0, shift);
+}
+
+// Anchored where the face is now, stiction has no tangential travel: energy and forces are the frictionless ones
+// (what makes switching the law on at a restart state seamless); anchored at the reference positions it differs.
+TEST(ContactFace, StictionAnchoredAtTheCurrentStateIsFrictionless)
+{
+  const auto lj = law();
+  elements::StictionIntegrand stiction{{lj, -lj.equilibrium_gap()}};
+  elements::FrictionlessIntegrand<laws::FlatSubstrate> frictionless{lj, {-lj.equilibrium_gap()}};
+  double X[9][3], A[9][3], u[9][3], r_stiction[27], r_frictionless[27], r_reference[27];
+  face_state<elements::Quad9Surface>(X, u);
+  for (int k = 0; k < 9; ++k)
+    for (int i = 0; i < 3; ++i) A[k][i] = X[k][i] + u[k][i];
+  const auto anchored = elements::contact_face<elements::Quad9Surface>(stiction, X, A, u, 5, r_stiction);
+  const auto plain = elements::contact_face<elements::Quad9Surface>(frictionless, X, u, 5, r_frictionless);
+  elements::contact_face<elements::Quad9Surface>(stiction, X, u, 5, r_reference);   // anchors at X
+  ASSERT_GT(plain.active_points, 0);
+  EXPECT_NEAR(anchored.energy, plain.energy, 1e-12 * std::abs(plain.energy));
+  double largest = 0.0, difference = 0.0;
+  for (int p = 0; p < 27; ++p) {
+    EXPECT_NEAR(r_stiction[p], r_frictionless[p], 1e-12 * (1.0 + std::abs(r_frictionless[p])));
+    largest = std::max(largest, std::abs(r_frictionless[p]));
+    difference = std::max(difference, std::abs(r_reference[p] - r_frictionless[p]));
+  }
+  EXPECT_GT(difference, 1e-3 * largest);   // the face has slid: from the reference positions there is travel
 }
 
 TEST(ContactFace, UndeformedFaceAtTheEquilibriumGapStoresMinusWorkOfAdhesion)

@@ -16,6 +16,7 @@ struct ContactFaceViews {
   Kokkos::View<const int* [9], device_type> nodes;
   Kokkos::View<const double*, device_type> areas;      // undeformed area of each face
   Kokkos::View<const double* [3], device_type> coordinates;   // reference positions of the local nodes
+  Kokkos::View<const double* [3], device_type> anchors;       // where the stiction law measures travel from
   int face_nodes = 4;
   int count = 0;
 };
@@ -62,7 +63,7 @@ struct ContactKernel {
   {
     constexpr int n = Surface::nodes;
     int nodes[n];
-    double X[n][3], u[n][3];
+    double X[n][3], A[n][3], u[n][3];
     double nearest = 1e300, farthest = -1e300;
     for (int k = 0; k < n; ++k) {
       nodes[k] = faces.nodes(face, k);
@@ -70,6 +71,7 @@ struct ContactKernel {
       double x[3];
       for (int i = 0; i < 3; ++i) {
         X[k][i] = faces.coordinates(nodes[k], i);
+        A[k][i] = faces.anchors(nodes[k], i);
         x[i] = X[k][i] + u[k][i];
       }
       const double bound = integrand.far_bound(x);
@@ -80,12 +82,13 @@ struct ContactKernel {
     if (skip_distant && nearest - 0.5 * (farthest - nearest) > integrand.cut_off()) {
       double phi, gradient[3];
       double x_far[3] = {0.0, 0.0, 1e300};
-      integrand.evaluate(X[0], x_far, phi, gradient, nullptr);
+      integrand.evaluate(A[0], x_far, phi, gradient, nullptr);
       sums[0] += phi * faces.areas(face);
       return;
     }
     double r[3 * n], K[3 * n][3 * n];
-    const auto result = elements::contact_face<Surface>(integrand, X, u, order, r, scatter.with_matrix ? K : nullptr);
+    const auto result = elements::contact_face<Surface>(integrand, X, A, u, order, r,
+                                                               scatter.with_matrix ? K : nullptr);
     sums[0] += result.energy;
     sums[1] += 1.0;
     sums[2] += result.active_points;

@@ -272,6 +272,7 @@ struct DiscreteSystem::Implementation {
     contact_faces.face_nodes = space.face_nodes;
     contact_faces.count = static_cast<int>(face_list.size());
     contact_faces.coordinates = coordinates;
+    contact_faces.anchors = coordinates;
     auto face_view = DeviceView<int* [9]>("contact faces", face_list.size());
     auto h_faces = Kokkos::create_mirror_view(face_view);
     std::vector<double> areas;
@@ -522,6 +523,21 @@ void DiscreteSystem::set_damping(double eta, Teuchos::RCP<const Vector> anchor)
 {
   implementation_->damping = eta;
   implementation_->damping_anchor = std::move(anchor);
+}
+
+void DiscreteSystem::set_contact_anchors(const Vector& x)
+{
+  auto& impl = *implementation_;
+  const auto u = space_displacements(x);   // collective
+  DeviceView<double* [3]> anchors("contact anchors", impl.local_nodes.size());
+  auto host = Kokkos::create_mirror_view(anchors);
+  for (std::size_t n = 0; n < impl.local_nodes.size(); ++n)
+    for (int i = 0; i < 3; ++i) {
+      const auto node = impl.local_nodes[n];
+      host(n, i) = impl.space.coordinates[node][i] + u[3 * node + i];
+    }
+  Kokkos::deep_copy(anchors, host);
+  impl.contact_faces.anchors = anchors;
 }
 
 double DiscreteSystem::mean_diagonal() const

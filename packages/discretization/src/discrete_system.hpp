@@ -85,6 +85,9 @@ public:
   // (prescribed master rows excluded), the stationarity condition of Pi(x) + eta/2 |x - anchor|^2. eta = 0 (the
   // default) switches it off. The energies and reactions reported stay those of the undamped system.
   void set_damping(double eta, Teuchos::RCP<const Vector> anchor);
+  // Anchors the contact law at the state x: a law that measures tangential travel (stiction) measures it from the
+  // nodes' positions in x from now on, instead of from the undeformed spatula. Collective.
+  void set_contact_anchors(const Vector& x);
   // Mean absolute diagonal of the last assembled tangent (the scale for eta).
   double mean_diagonal() const;
 

@@ -6,7 +6,9 @@
 //
 // x_q = sum_k N_k (X_k + u_k). The face is interpolated bilinearly (Q1C1: 4 nodes) or biquadratically (Q1C2: the
 // 4 corners, 4 mid-edge nodes and the centre, in that order). The adhesion integrand (law x substrate) is a
-// template parameter: evaluate(X, x, phi, dphi/dx, d2phi/dx2 or nullptr) -> within the cut-off?
+// template parameter: evaluate(A, x, phi, dphi/dx, d2phi/dx2 or nullptr) -> within the cut-off?, with A = sum_k N_k A_k
+// the point's anchor: where the stiction law measures tangential travel from (the frictionless law ignores it). The
+// anchors A_k are the reference positions X_k unless a run re-anchors them at a deformed state.
 #include "gauss_rule.hpp"
 #include "lennard_jones.hpp"
 #include "stiction.hpp"
@@ -98,10 +100,10 @@ struct StictionIntegrand {
   laws::StictionLaw law;
   KOKKOS_INLINE_FUNCTION double far_bound(const double x[3]) const { return x[2] - law.substrate_height; }
   KOKKOS_INLINE_FUNCTION double cut_off() const { return law.law.r_cut; }
-  KOKKOS_INLINE_FUNCTION bool evaluate(const double X[3], const double x[3], double& phi, double gradient[3],
+  KOKKOS_INLINE_FUNCTION bool evaluate(const double anchor[3], const double x[3], double& phi, double gradient[3],
                                        double (*H)[3]) const
   {
-    return law.evaluate(X, x, phi, gradient, H);
+    return law.evaluate(anchor, x, phi, gradient, H);
   }
 };
 
@@ -111,9 +113,10 @@ struct ContactFaceResult {
   int active_points = 0;   // quadrature points within the cut-off
 };
 
-// One contact face: energy, residual r[3N] and (if K) tangent K[3N][3N].
+// One contact face with nodal anchors A: energy, residual r[3N] and (if K) tangent K[3N][3N].
 template <class Surface, class Integrand>
 KOKKOS_INLINE_FUNCTION ContactFaceResult contact_face(const Integrand& integrand, const double X[Surface::nodes][3],
+                                                      const double A[Surface::nodes][3],
                                                       const double u[Surface::nodes][3], int order,
                                                       double r[3 * Surface::nodes],
                                                       double (*K)[3 * Surface::nodes] = nullptr)
@@ -131,10 +134,10 @@ KOKKOS_INLINE_FUNCTION ContactFaceResult contact_face(const Integrand& integrand
       gauss_point(order, a, s, ws);
       gauss_point(order, b, t, wt);
       Surface::evaluate(s, t, shape, dshape);
-      double Xq[3] = {0, 0, 0}, xq[3] = {0, 0, 0}, Xs[3] = {0, 0, 0}, Xt[3] = {0, 0, 0};
+      double Aq[3] = {0, 0, 0}, xq[3] = {0, 0, 0}, Xs[3] = {0, 0, 0}, Xt[3] = {0, 0, 0};
       for (int k = 0; k < N; ++k)
         for (int i = 0; i < 3; ++i) {
-          Xq[i] += shape[k] * X[k][i];
+          Aq[i] += shape[k] * A[k][i];
           xq[i] += shape[k] * (X[k][i] + u[k][i]);
           Xs[i] += dshape[k][0] * X[k][i];
           Xt[i] += dshape[k][1] * X[k][i];
@@ -143,7 +146,7 @@ KOKKOS_INLINE_FUNCTION ContactFaceResult contact_face(const Integrand& integrand
                                 Xs[0] * Xt[1] - Xs[1] * Xt[0]};
       const double dA = ::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]) * ws * wt;
       double phi, gradient[3], H[3][3];
-      const bool active = integrand.evaluate(Xq, xq, phi, gradient, K ? H : nullptr);
+      const bool active = integrand.evaluate(Aq, xq, phi, gradient, K ? H : nullptr);
       result.energy += phi * dA;
       result.area += dA;
       if (!active) continue;
@@ -159,6 +162,16 @@ KOKKOS_INLINE_FUNCTION ContactFaceResult contact_face(const Integrand& integrand
           }
     }
   return result;
+}
+
+// The same with the anchors at the reference positions.
+template <class Surface, class Integrand>
+KOKKOS_INLINE_FUNCTION ContactFaceResult contact_face(const Integrand& integrand, const double X[Surface::nodes][3],
+                                                      const double u[Surface::nodes][3], int order,
+                                                      double r[3 * Surface::nodes],
+                                                      double (*K)[3 * Surface::nodes] = nullptr)
+{
+  return contact_face<Surface>(integrand, X, X, u, order, r, K);
 }
 
 }  // namespace spatula::elements

@@ -1,6 +1,7 @@
 #pragma once
 // The stiction variant of the adhesion law (paper eq. 27, MODEL.md section 4) on a flat substrate. A surface point
-// is attracted to its anchor, the point of the substrate below where it started (its reference position), with the
+// is attracted to its anchor, the point of the substrate below where it started (its reference position, or its
+// position at the state where a run re-anchored the law), with the
 // Lennard-Jones law of the total separation r_k = |g| = sqrt(r_s^2 + r_a^2), g = x - anchor, r_a the tangential
 // travel; the force acts along g (equal law in mode I and mode II). The radial law is unstable in compression, so
 // its attraction is kept and the repulsion is replaced by the normal law acting only in compression:
@@ -18,11 +19,11 @@ struct StictionLaw {
   double substrate_height = 0.0;
 
   // Energy density, gradient d phi / dx and (if H) Hessian at current position x of a point whose anchor is at
-  // (X_0, X_1) on the substrate. Returns false if both parts are beyond the cut-off.
-  KOKKOS_INLINE_FUNCTION bool evaluate(const double X[3], const double x[3], double& phi, double gradient[3],
+  // (A_0, A_1) on the substrate. Returns false if both parts are beyond the cut-off.
+  KOKKOS_INLINE_FUNCTION bool evaluate(const double A[3], const double x[3], double& phi, double gradient[3],
                                        double (*H)[3]) const
   {
-    const double g[3] = {x[0] - X[0], x[1] - X[1], x[2] - substrate_height};
+    const double g[3] = {x[0] - A[0], x[1] - A[1], x[2] - substrate_height};
     const double r_s = g[2], r_k = ::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
     const double r_eq = law.equilibrium_gap();
     double p, d1, d2, p_eq, unused1, unused2;
