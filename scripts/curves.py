@@ -41,3 +41,32 @@ def pull_off_summary(work, scene):
         'worst_balance_error': max(r['balance_error_per_Pi_c0'] for r in rows),
         'detached': detach['P_z_nN'] < 0.01 * peak['P_z_nN'], 'rows': lift,
     }
+
+
+def pad_slip(work, scene, at_u_z):
+    """How far the adhering part of the pad has slid along the substrate in a pull-off: the median tangential travel,
+    since the run's first field state, of the contact nodes still within 0.5 nm of the equilibrium gap at the field
+    state nearest to u_z = at_u_z. Returns (u_z of that state, median slip [nm], adhering nodes) or None without
+    field output."""
+    import re
+    import h5py
+    import numpy
+    path = os.path.join(work, scene, 'mesh.h5')
+    states = os.path.join(work, scene, 'mesh_states.xmf')
+    if not (os.path.exists(path) and os.path.exists(states)):
+        return None
+    times = [float(t) for t in re.findall(r'<Time Value="([^"]+)"', open(states).read())]
+    if len(times) < 2:
+        return None
+    # The first state is labelled by theta_y (the restart state), the others by u_z.
+    nearest = min(range(1, len(times)), key=lambda k: abs(times[k] - at_u_z))
+    with h5py.File(path, 'r') as f:
+        contact = f['mesh/node_sets/contact'][:]
+        height = f['mesh/coordinates'][:][contact, 2]
+        first = f['states/000000/displacement'][:][contact]
+        then = f[f'states/{nearest:06d}/displacement'][:][contact]
+    adhering = (numpy.abs(height + first[:, 2]) < 0.5) & (numpy.abs(height + then[:, 2]) < 0.5)
+    if not adhering.any():
+        return None
+    slip = numpy.hypot(then[:, 0] - first[:, 0], then[:, 1] - first[:, 1])[adhering]
+    return times[nearest], float(numpy.median(slip)), int(adhering.sum())

@@ -7,9 +7,10 @@ studies: table4 (peel by rotation), table6 (pull-off at 45/60/75/90 deg, also Ta
 gamma-L (Table 8), rough (Fig. 14), all. Runs use one MPI rank each, `--jobs` of them at once (both cores by default); pull-offs
 wait for the rotation run whose checkpoints they start from. Progress: one line per converged step of every run.
 
-Mesh level: the scenes in xml/studies/ are written for the medium mesh and tables 4 and 6 and the rough study run on it.
-The sweeps (stiction, gamma-W, gamma-L: eight rotations and pull-offs) run on the coarse mesh unless `--mesh` says
-otherwise: on the medium mesh each takes about 25 minutes here, on the coarse one about 3. `--mesh LEVEL` runs every
+Mesh level: the scenes in xml/studies/ are written for the medium mesh and tables 4 and 6, the stiction pull-off (it
+restarts from the medium rotation) and the rough study run on it. The sweeps (gamma-W, gamma-L: six rotations and
+pull-offs) run on the coarse mesh unless `--mesh` says otherwise: on the medium mesh each takes about 25 minutes here,
+on the coarse one about 3. `--mesh LEVEL` runs every
 scene of the study on LEVEL. A run's scene file is the study XML with the level replaced, written beside its output.
 
 Results: <work>/<level>/<scene>/ per run, <work>/<level>/tables/*.csv and *.md, and with --docs docs/validation.md
@@ -24,7 +25,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from curves import interpolate, pull_off_summary, read_curve  # noqa: E402
+from curves import interpolate, pad_slip, pull_off_summary, read_curve  # noqa: E402
 from scenes import app_diagnosis  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -43,7 +44,7 @@ STUDIES['all'] = sorted({scene for scenes in STUDIES.values() for scene in scene
                         key=lambda s: (not s.startswith('peel'), s))
 DEPENDS = {f'pull-off-{t}': 'peel-rotation' for t in (45, 60, 75, 90, '60-stiction')}
 # The mesh level each study runs on by default (None: the level written in the scene file).
-STUDY_LEVEL = {'stiction': 'coarse', 'gamma-W': 'coarse', 'gamma-L': 'coarse'}
+STUDY_LEVEL = {'gamma-W': 'coarse', 'gamma-L': 'coarse'}
 LEVELS = ('coarse', 'medium', 'fine')
 
 
@@ -268,11 +269,14 @@ def write_tables(work, scenes, level):
     if 'pull-off-60-stiction' in summaries and 'pull-off-60' in summaries:
         a, b = summaries['pull-off-60'], summaries['pull-off-60-stiction']
         markdown.append(f'### Stiction vs frictionless at 60 deg ({level} mesh)\n')
-        markdown.append('| law | P_max [nN] | Delta u_z [nm] | Delta Pi_ext [1e-18 J] | end of the run |')
-        markdown.append('|---|---|---|---|---|')
-        for name, s in (('frictionless', a), ('stiction', b)):
+        markdown.append('| law | P_max [nN] | Delta u_z [nm] | Delta Pi_ext [1e-18 J] | slip of the adhering pad by P_max '
+                        '| end of the run |')
+        markdown.append('|---|---|---|---|---|---|')
+        for name, scene, s in (('frictionless', 'pull-off-60', a), ('stiction', 'pull-off-60-stiction', b)):
+            slip = pad_slip(work, scene, s['u_z_at_P_max'])
+            slip_text = (f'{slip[1]:.1f} nm ({slip[2]} nodes, state at u_z = {slip[0]:.0f} nm)' if slip else '')
             markdown.append(f'| {name} | {s["P_max_nN"]:.2f} | {s["delta_u_z_nm"]:.0f} | {s["delta_Pi_ext_1e-18J"]:.0f} '
-                            f'| {s["outcome"]} |')
+                            f'| {slip_text} | {s["outcome"]} |')
         markdown.append('')
     if unfinished:
         markdown.append(f'### Runs that stopped before their pull-off ({level} mesh)\n')
