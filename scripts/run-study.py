@@ -35,14 +35,14 @@ SCENES = os.path.join(ROOT, 'xml', 'studies')
 STUDIES = {
     'table4': ['peel-rotation'],
     'table6': ['peel-rotation', 'pull-off-45', 'pull-off-60', 'pull-off-75', 'pull-off-90'],
-    'stiction': ['peel-rotation', 'pull-off-60', 'pull-off-60-stiction'],
+    'stiction': ['peel-rotation', 'pull-off-60', 'pull-off-60-stiction', 'pull-off-60-stiction-x-held'],
     'gamma-W': ['peel-rotation', 'pull-off-60', 'gamma-W-0.667', 'gamma-W-1.5', 'gamma-W-2.25'],
     'gamma-L': ['peel-rotation', 'pull-off-60', 'gamma-L-0.444', 'gamma-L-0.667', 'gamma-L-1.5'],
     'rough': ['rough-z0-0', 'rough-z0-4', 'rough-z0-8'],
 }
 STUDIES['all'] = sorted({scene for scenes in STUDIES.values() for scene in scenes},
                         key=lambda s: (not s.startswith('peel'), s))
-DEPENDS = {f'pull-off-{t}': 'peel-rotation' for t in (45, 60, 75, 90, '60-stiction')}
+DEPENDS = {f'pull-off-{t}': 'peel-rotation' for t in (45, 60, 75, 90, '60-stiction', '60-stiction-x-held')}
 # The mesh level each study runs on by default (None: the level written in the scene file).
 STUDY_LEVEL = {'gamma-W': 'coarse', 'gamma-L': 'coarse'}
 LEVELS = ('coarse', 'medium', 'fine')
@@ -266,17 +266,23 @@ def write_tables(work, scenes, level):
                 markdown.append(f'| {factor:g} | {s["P_max_nN"]:.2f} | {s["delta_u_z_nm"]:.0f} | {s["delta_Pi_ext_1e-18J"]:.0f} '
                                 f'| {s["outcome"]} |')
             markdown.append('')
-    if 'pull-off-60-stiction' in summaries and 'pull-off-60' in summaries:
-        a, b = summaries['pull-off-60'], summaries['pull-off-60-stiction']
+    if 'pull-off-60' in summaries and ('pull-off-60-stiction' in summaries or 'pull-off-60-stiction-x-held' in summaries):
         markdown.append(f'### Stiction vs frictionless at 60 deg ({level} mesh)\n')
         markdown.append('| law | P_max [nN] | Delta u_z [nm] | Delta Pi_ext [1e-18 J] | slip of the adhering pad by P_max '
-                        '| end of the run |')
-        markdown.append('|---|---|---|---|---|---|')
-        for name, scene, s in (('frictionless', 'pull-off-60', a), ('stiction', 'pull-off-60-stiction', b)):
+                        '| end face X travel by P_max | end of the run |')
+        markdown.append('|---|---|---|---|---|---|---|')
+        laws = [('frictionless', 'pull-off-60'), ('stiction, end face free in X', 'pull-off-60-stiction'),
+                ('stiction, end face held in X', 'pull-off-60-stiction-x-held')]
+        for name, scene in laws:
+            if scene not in summaries:
+                continue
+            s = summaries[scene]
             slip = pad_slip(work, scene, s['u_z_at_P_max'])
             slip_text = (f'{slip[1]:.1f} nm ({slip[2]} nodes, state at u_z = {slip[0]:.0f} nm)' if slip else '')
+            peak = max(s['rows'], key=lambda r: r['P_z_nN'])
+            travel = f'{peak["u_x_nm"] - s["rows"][0]["u_x_nm"]:.1f} nm' if 'u_x_nm' in peak else 'not recorded'
             markdown.append(f'| {name} | {s["P_max_nN"]:.2f} | {s["delta_u_z_nm"]:.0f} | {s["delta_Pi_ext_1e-18J"]:.0f} '
-                            f'| {slip_text} | {s["outcome"]} |')
+                            f'| {slip_text} | {travel} | {s["outcome"]} |')
         markdown.append('')
     if unfinished:
         markdown.append(f'### Runs that stopped before their pull-off ({level} mesh)\n')
@@ -362,7 +368,8 @@ def plots(results, directory):
     groups = (('validation-fig8-pull-off.png', 'Pull-off at fixed inclination (cf. paper Fig. 8)',
                [(f'pull-off-{t}', f'{t} deg') for t in (45, 60, 75, 90)]),
               ('validation-fig9-stiction.png', 'Stiction vs frictionless at 60 deg (cf. paper Fig. 9)',
-               [('pull-off-60', 'frictionless'), ('pull-off-60-stiction', 'stiction')]),
+               [('pull-off-60', 'frictionless'), ('pull-off-60-stiction', 'stiction, end face free in X'),
+                ('pull-off-60-stiction-x-held', 'stiction, end face held in X')]),
               ('validation-fig10-gamma-W.png', 'gamma_W / gamma_W0 at 60 deg (cf. paper Fig. 10, left)',
                [('gamma-W-0.667', '1.5^-1'), ('pull-off-60', '1'), ('gamma-W-1.5', '1.5'), ('gamma-W-2.25', '1.5^2')]),
               ('validation-fig10-gamma-L.png', 'gamma_L / gamma_L0 at 60 deg (cf. paper Fig. 10, right)',

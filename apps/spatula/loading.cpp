@@ -34,6 +34,9 @@ void LoadingParameters::declare(Teuchos::ParameterList& loading)
                            "count 'final lift' from the u_z where the lift starts, not from the undeformed state");
   parameters::declare_bool(loading, "free lift during rotation", true,
                            "zero net Z force on the end face while rotating (false: u_z held at 0)");
+  parameters::declare_bool(loading, "free slide during lift", false,
+                           "zero net X force on the end face while lifting (false: u_x held); needs a law that holds "
+                           "the pad tangentially (stiction): on a frictionless substrate the spatula could slide freely");
   parameters::declare_bool(loading, "hold contact surface", false,
                            "hold the pad's contact surface at Z = 0 (a structural check without adhesion)");
   analysis::StepParameters::declare(
@@ -72,6 +75,7 @@ LoadingParameters LoadingParameters::from(const Teuchos::ParameterList& loading)
   p.theta_y = loading.get<double>("theta_y");
   p.final_lift = loading.get<double>("final lift");
   p.free_lift = loading.get<bool>("free lift during rotation");
+  p.free_slide = loading.get<bool>("free slide during lift");
   p.lift_relative = loading.get<bool>("final lift relative");
   p.hold_contact_surface = loading.get<bool>("hold contact surface");
   p.rotation_steps = analysis::StepParameters::from(loading.sublist("Rotation Steps"), "Loading/Rotation Steps");

@@ -16,6 +16,7 @@ struct LoadingParameters {
   double final_lift = 100.0;      // lift: u_z of the face centre at the end, from the undeformed state [nm]
   bool lift_relative = false;     // final lift counted from where the lift starts (a pre-rotated state)
   bool free_lift = true;          // while rotating: zero net Z force on the face (else u_z held at 0)
+  bool free_slide = false;        // while lifting: zero net X force on the face (else u_x held)
   bool hold_contact_surface = false;   // the pad's bottom held at Z = 0 (a check without adhesion)
   analysis::StepParameters rotation_steps, lift_steps;
   std::string past_instabilities = "jump";   // a name in instability_methods()

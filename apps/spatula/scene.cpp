@@ -56,6 +56,10 @@ Scene read_scene(Teuchos::ParameterList user)
   scene.linear_solver = solvers::LinearSolverParameters::from(user.sublist("Linear Solver"));
   scene.newton = solvers::NewtonParameters::from(user.sublist("Nonlinear Solver"));
   scene.adhesion = contact::AdhesionParameters::from(user.sublist("Adhesion"), scene.material.young);
+  if (scene.loading.free_slide && scene.adhesion.settings.law != "stiction")
+    throw parameters::InputError("parameter 'Loading/free slide during lift' = true needs 'Adhesion/law' = 'stiction' "
+                                 "(got '" + scene.adhesion.settings.law + "'): without tangential adhesion nothing "
+                                 "holds the spatula in X and the system is singular");
   if (scene.adhesion.settings.anchor_at_restart) {
     if (scene.loading.restart_file.empty())
       throw parameters::InputError("parameter 'Adhesion/stiction anchors' = 'restart state' needs a state to restart "

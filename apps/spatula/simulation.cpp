@@ -31,7 +31,7 @@ public:
     out_ << "step,stage,theta_y_deg,u_z_nm,M_y_nNnm,M_y_per_ER0^3,P_z_nN,P_z_per_ER0^2,Pi_int_1e-18J,"
             "Pi_ext_1e-18J,Pi_c_1e-18J,Pi_sa_1e-18J,Pi_ext_per_Pi_c0,Pi_int_per_Pi_c0,Pi_sa_per_Pi_c0,"
             "dissipated_per_Pi_c0,balance_error_per_Pi_c0,after_jump,contact_faces_active,contact_faces_skipped,"
-            "newton_iterations,negative_pivots,wall_s\n";
+            "newton_iterations,negative_pivots,wall_s,u_x_nm\n";
     out_ << std::setprecision(10);
   }
   double stored_adhesion(const analysis::LoadPoint& p) const { return 2 * (p.contact_energy - initial_contact_); }
@@ -50,7 +50,7 @@ public:
          << 2 * p.external_work / reference_ << "," << internal(p) / reference_ << "," << sa / reference_
          << "," << 2 * p.dissipated / reference_ << "," << balance_error(p) << "," << (p.after_jump ? 1 : 0) << ","
          << p.active_faces << "," << p.skipped_faces << ","
-         << p.newton_iterations << "," << p.negative_pivots << "," << p.seconds << "\n";
+         << p.newton_iterations << "," << p.negative_pivots << "," << p.seconds << "," << p.slide << "\n";
     out_.flush();
   }
 
@@ -216,8 +216,9 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
   if (!failure && !path.detached() && loading.type == "lift") {
     stage = "lift";
     const double target = loading.final_lift + (loading.lift_relative ? path.last().lift : 0.0);
-    failure = path.advance(Master::lift, target, LoadPath::spatula_control(Master::lift, false), loading.lift_steps,
-                           1.0, on_point);
+    auto control = LoadPath::spatula_control(Master::lift, false);
+    control.prescribed[static_cast<int>(Master::slide)] = !loading.free_slide;
+    failure = path.advance(Master::lift, target, control, loading.lift_steps, 1.0, on_point);
   }
   // No equilibrium beyond a state where most of the pad has let go: that is the detachment.
   if (failure && options.contact && released_fraction(path.last()) > 0.5) {

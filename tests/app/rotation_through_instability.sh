@@ -3,7 +3,8 @@
 # the interface takes up energy, the jump's released energy is recorded, and Pi_ext = Pi_int + Pi_sa + D holds to
 # 2e-3 Pi_c0 at every state. Then restart: the same rotation split at a checkpoint (12 deg) ends where the
 # continuous one does; and a lift from that checkpoint with the stiction law anchored there starts from the
-# frictionless state's energy, converges, and is stiffer than the frictionless lift (the pad cannot slide).
+# frictionless state's energy, converges, and is stiffer than the frictionless lift (the pad cannot slide), more so
+# with the end face held in X than free in X.
 # usage: rotation_through_instability.sh <spatula>
 set -eu
 app=$1
@@ -53,12 +54,13 @@ x, y = float(a['Pi_ext_1e-18J']), float(b['Pi_ext_1e-18J'])
 assert abs(x - y) <= 2e-3 * abs(x), ('Pi_ext', x, y)
 print(f'restart at 12 deg reproduces the continuous run at 20 deg: M_y {float(b["M_y_nNnm"]):.4f} nN nm')
 PY
-lift() {   # directory, law, extra Adhesion parameters: 2 nm of lift in 1 nm steps from the 12 deg checkpoint
+lift() {   # directory, law, extra Adhesion parameters, extra Loading parameters: 2 nm of lift in 1 nm steps from
+           # the 12 deg checkpoint
   cat <<XML
 <ParameterList>
   <ParameterList name="Adhesion"><Parameter name="law" type="string" value="$2"/>$3</ParameterList>
   <ParameterList name="Loading">
-    <Parameter name="type" type="string" value="lift"/>
+    <Parameter name="type" type="string" value="lift"/>$4
     <Parameter name="theta_y" type="double" value="12"/>
     <Parameter name="restart file" type="string" value="first/checkpoints.h5"/>
     <Parameter name="restart theta_y" type="double" value="12"/>
@@ -72,10 +74,13 @@ lift() {   # directory, law, extra Adhesion parameters: 2 nm of lift in 1 nm ste
 </ParameterList>
 XML
 }
-lift frictionless frictionless "" > frictionless.xml
-lift stiction stiction '<Parameter name="stiction anchors" type="string" value="restart state"/>' > stiction.xml
+anchors='<Parameter name="stiction anchors" type="string" value="restart state"/>'
+lift frictionless frictionless "" "" > frictionless.xml
+lift stiction stiction "$anchors" "" > stiction.xml
+lift free stiction "$anchors" '<Parameter name="free slide during lift" type="bool" value="true"/>' > free.xml
 "$app" frictionless.xml > frictionless.log
 "$app" stiction.xml > stiction.log
+"$app" free.xml > free.log
 grep -q "stiction anchors set at this state" stiction.log
 /usr/bin/python3 - <<'PY'
 import csv
@@ -92,6 +97,14 @@ worst = max(float(r['balance_error_per_Pi_c0']) for r in b)
 assert worst < 2e-3, worst
 pa, pb = float(a[1]['P_z_nN']), float(b[1]['P_z_nN'])
 assert pb > 1.5 * pa > 0.0, (pa, pb)
+# Free in X, the face moves sideways and the pull stays between the two: stiction adds tangential stiffness to the
+# frictionless system, holding the face adds a constraint to that.
+c = list(csv.DictReader(open('free/curve.csv')))
+pc = float(c[1]['P_z_nN'])
+assert pa * (1 - 1e-3) <= pc <= pb, (pa, pc, pb)
+assert abs(float(c[-1]['u_x_nm']) - float(c[0]['u_x_nm'])) > 1e-3, 'the free face did not move in X'
+assert all(float(r['u_x_nm']) == 0.0 for r in b), 'the held face moved in X'
+assert max(float(r['balance_error_per_Pi_c0']) for r in c) < 2e-3
 print(f'stiction anchored at the 12 deg checkpoint: Pi_sa continuous at the switch, P_z after 1 nm {pb:.3f} nN '
-      f'(frictionless {pa:.3f} nN), balance error <= {worst:.1e} Pi_c0')
+      f'face held in X, {pc:.3f} nN free in X (frictionless {pa:.3f} nN), balance error <= {worst:.1e} Pi_c0')
 PY
