@@ -4,6 +4,7 @@
 
 #include <Teuchos_TimeMonitor.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -31,6 +32,43 @@ std::string load_text(double value)
 }
 
 }  // namespace
+
+FailedLoad::FailedLoad(double direction, double smallest, double cut)
+  : direction_(direction), smallest_(smallest), cut_(cut)
+{
+}
+
+void FailedLoad::failed(double load)
+{
+  if (known_ && direction_ * (load - load_) >= -tolerance(load)) {
+    bisecting_ = true;   // the same load (or one beyond it) failed again
+  } else {
+    load_ = load;
+    known_ = true;
+  }
+}
+
+void FailedLoad::reached(double value)
+{
+  if (known_ && direction_ * (load_ - value) <= tolerance(value)) forget();
+}
+
+void FailedLoad::forget()
+{
+  known_ = bisecting_ = false;
+}
+
+double FailedLoad::limit(double increment, double value) const
+{
+  if (!bisecting_) return increment;
+  const double gap = direction_ * (load_ - value);
+  return gap * cut_ >= smallest_ * (1 - 1e-12) ? std::min(increment, gap * cut_) : gap;
+}
+
+double FailedLoad::tolerance(double value)
+{
+  return 1e-12 * std::max(1.0, std::abs(value));
+}
 
 void StepParameters::declare(Teuchos::ParameterList& list, double initial, double minimum, double maximum)
 {
@@ -121,8 +159,9 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
   previous_increment_ = 0.0;   // no predictor across a change of the controlled load
   const double direction = target >= value ? 1.0 : -1.0;
   auto trial = system.create_vector();
+  FailedLoad failed(direction, steps.minimum * unit, steps.cut);
   while (!detached_ && direction * (target - value) > 1e-12 * std::max(1.0, std::abs(target))) {
-    increment = std::min(increment, direction * (target - value));
+    increment = failed.limit(std::min(increment, direction * (target - value)), value);
     // Secant predictor from the last two converged states (scaled to the new increment).
     trial->assign(*x_);
     if (previous_increment_ > 0.0) trial->update(increment / previous_increment_, *x_, -increment / previous_increment_, *previous_, 1.0);
@@ -132,6 +171,7 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
     if (!result.converged) {
       if (log_) *log_ << table.str() << "  step to " << name << " = " << load_text((value + direction * increment) / unit)
                       << " failed (" << result.failure << "); cutting the increment\n";
+      failed.failed(value + direction * increment);
       increment *= steps.cut;
       if (increment < steps.minimum * unit * (1 - 1e-12)) {
         const double unreached = value + direction * increment / steps.cut;
@@ -143,6 +183,7 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
           if (failure) failure->load = unreached / unit;   // in the load's unit, as every other failure
           if (failure) return failure;
           value = unreached;
+          failed.forget();
           increment = steps.initial * unit;
           previous_increment_ = 0.0;
           continue;
@@ -158,6 +199,7 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
           system.set_control(control);
           if (failure && !detached_) return failure;
           value = system.master(*x_, controlled);
+          failed.forget();
           increment = steps.initial * unit;
           previous_increment_ = 0.0;
           continue;
@@ -185,6 +227,7 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
         if (log_) *log_ << table.str() << "  step to " << name << " = " << load_text((value + direction * increment) / unit)
                         << " converged on another branch (the step released " << load_text(2.0 * released)
                         << " nN nm, full spatula): a snap within the step; cutting the increment\n";
+        failed.failed(value + direction * increment);
         increment *= steps.cut;
         previous_increment_ = 0.0;
         continue;
@@ -209,6 +252,7 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
     x_->assign(*trial);
     previous_increment_ = increment;
     value += direction * increment;
+    failed.reached(value);
     points_.push_back(point);
     if (log_ && tables_) *log_ << table.str();
     if (detachment_test_ && detachment_test_(points_.back())) detached_ = true;

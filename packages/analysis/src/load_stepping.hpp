@@ -27,6 +27,29 @@ struct StepParameters {
   static StepParameters from(const Teuchos::ParameterList& list, const std::string& path);
 };
 
+// The nearest load ahead of the converged state where a step failed (Newton did not converge, or converged across
+// a snap). A load that fails again from a nearer state (or a load beyond it fails) is, in all likelihood, past a
+// limit point: from then on the increments bisect the gap to it instead of trying it from every nearer state, each
+// retry a whole failed Newton attempt. Once half the gap would be below the smallest increment, the load itself is
+// tried once more: it converges (Newton had only been too far away) or the instability is there. Loads and
+// increments in one unit; direction +1 or -1 (the sense of travel).
+class FailedLoad {
+public:
+  FailedLoad(double direction, double smallest, double cut);
+  void failed(double load);     // a step to `load` failed
+  void reached(double value);   // a step converged at `value`: the failed load is forgotten once reached
+  void forget();                // after a jump or arc-length past the instability
+  // The increment to take from `value`: `increment`, or while bisecting half the gap to the failed load (the whole
+  // gap once its half would be below the smallest increment).
+  double limit(double increment, double value) const;
+
+private:
+  static double tolerance(double value);
+  double direction_, smallest_, cut_;
+  double load_ = 0.0;
+  bool known_ = false, bisecting_ = false;
+};
+
 // One converged state on the load path (half-model values: the app doubles them for the full spatula).
 struct LoadPoint {
   int step = 0;
