@@ -18,7 +18,7 @@ Pareto front), and docs/error-vs-time.csv (every configuration's values and erro
 
 `--check NAME` (CI) runs one configuration in a fresh work directory and compares it with its row in
 docs/error-vs-time.csv: the quantities must agree to 0.2 % and the error against the stored reference must be the
-recorded one within 0.2 percentage points. SPATULA_APP overrides the app's path.
+recorded one within 0.2 percentage points; and every jump of the run must have released more than 1e-4 Pi_c0. SPATULA_APP overrides the app's path.
 """
 import argparse
 import csv
@@ -348,6 +348,14 @@ def check(configuration_name, work):
         good = abs(now - was) <= 2e-3
         ok &= good
         print(f'{label:22s} recorded {100 * was:6.2f} %  now {100 * now:6.2f} %  {"ok" if good else "DIFFERS"}')
+    # Every recorded jump is a snap: it released more than the step balance tolerance (1e-4 Pi_c0, the app's
+    # default); a descent that stayed on its branch is an ordinary step.
+    rows = read_curve(work, name(c))
+    released = [b['dissipated_per_Pi_c0'] - a['dissipated_per_Pi_c0'] for a, b in zip(rows, rows[1:]) if b['after_jump']]
+    good = all(r > 1e-4 for r in released)
+    ok &= good
+    print(f'{"jumps":22s} {len(released)}, the smallest released {min(released, default=0):.2e} Pi_c0  '
+          f'{"ok" if good else "A JUMP RELEASED NO ENERGY"}')
     print(f'{configuration_name}: {row["cpu_s"]:.0f} s CPU; {"agrees with" if ok else "DIFFERS FROM"} docs/error-vs-time.csv')
     return 0 if ok else 1
 

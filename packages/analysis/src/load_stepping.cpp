@@ -448,13 +448,22 @@ std::optional<Failure> LoadPath::jump(Master controlled, double value, const Cal
   const int iterations = std::get<int>(outcome);
   accept(*x, iterations, -1, {});
   auto& after = points_.back();
-  after.after_jump = true;
-  after.released = (before.internal_energy + before.contact_energy) - (after.internal_energy + after.contact_energy) +
-                   (after.external_work - before.external_work);
-  after.dissipated += after.released;
-  if (log_)
-    *log_ << "  jumped in " << iterations << " iterations (energy descent, then Newton), released "
-          << load_text(2.0 * after.released) << " nN nm (full spatula)\n";
+  const double released = (before.internal_energy + before.contact_energy) -
+                          (after.internal_energy + after.contact_energy) + (after.external_work - before.external_work);
+  if (jump_.step_balance_tolerance > 0.0 && std::abs(released) <= jump_.step_balance_tolerance) {
+    // Newton had stalled, but the descent stayed on the branch: by the measure of the step balance check, an
+    // ordinary step, not a snap.
+    if (log_)
+      *log_ << "  the descent stayed on the branch in " << iterations << " iterations (released "
+            << load_text(2.0 * released) << " nN nm, full spatula, within the step balance tolerance): an ordinary step\n";
+  } else {
+    after.after_jump = true;
+    after.released = released;
+    after.dissipated += released;
+    if (log_)
+      *log_ << "  jumped in " << iterations << " iterations (energy descent, then Newton), released "
+            << load_text(2.0 * released) << " nN nm (full spatula)\n";
+  }
   if (detachment_test_ && detachment_test_(after)) detached_ = true;
   if (on_point) on_point(after, *x_);
   return std::nullopt;

@@ -82,7 +82,9 @@ struct LoadPoint {
 // A snap can also hide inside a load step: Newton converges, but on another branch, and the work of the reactions
 // (trapezoidal rule) no longer matches the change of Pi_int + Pi_c over the step. A converged step whose imbalance
 // |Delta W - Delta Pi| exceeds step_balance_tolerance is therefore cut back like a failed one; at the smallest
-// increment it is accepted as a jump, the imbalance being the energy it released.
+// increment it is accepted as a jump, the imbalance being the energy it released. The same measure classifies a
+// descent's outcome: one that releases no more than the tolerance stayed on the branch (Newton had stalled where
+// there was no limit point) and is recorded as an ordinary step, not as a jump.
 struct JumpParameters {
   int maximum_iterations = 500;
   double shift_growth = 4.0;      // eta factor while the shifted tangent is indefinite
