@@ -256,7 +256,10 @@ def document(results, ref, work):
              'Written by `benchmarks/error_vs_time.py --docs` (see its header for what is measured); numbers from one '
              'run of each configuration on this 2-core machine, one run at a time. Time is the CPU time of the run '
              '(all its processes): the machine ran other jobs at the same time, so wall times are longer and vary. '
-             'A row whose source is a study took its time from that study\'s wall clock.', '',
+             'A row whose source is a study took its time from that study\'s wall clock. The rows were made before '
+             'the step control bisected towards a twice-failed load (commit 9d02272, 21 % less CPU on the coarse '
+             'pull-off, [performance.md](performance.md)); a run is redone by deleting its row from '
+             '`<work>/results.csv`.', '',
              '## Reference (Q1C2, 6 × 6 points)', '']
     names = reference_names(results)
     if len(names) == 3:
