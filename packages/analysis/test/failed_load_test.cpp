@@ -10,6 +10,15 @@ namespace {
 
 constexpr double smallest = 0.01, cut = 0.5;
 
+// The memory after `load` failed twice: from then on the steps bisect towards it.
+FailedLoad bisecting_towards(double load, double direction = 1.0)
+{
+  FailedLoad failed(direction, smallest, cut);
+  failed.failed(load);
+  failed.failed(load);
+  return failed;
+}
+
 TEST(FailedLoad, OneFailureLimitsNothing)
 {
   FailedLoad failed(1.0, smallest, cut);
@@ -38,27 +47,21 @@ TEST(FailedLoad, ALoadBeyondTheFailedOneCountsAsTheSame)
 
 TEST(FailedLoad, ANearerFailureWhileBisectingMovesTheBracket)
 {
-  FailedLoad failed(1.0, smallest, cut);
-  failed.failed(10.0);
-  failed.failed(10.0);
+  auto failed = bisecting_towards(10.0);
   failed.failed(9.0);
   EXPECT_DOUBLE_EQ(failed.limit(5.0, 8.0), 0.5);
 }
 
 TEST(FailedLoad, AGapTooSmallToHalveIsTriedWhole)
 {
-  FailedLoad failed(1.0, smallest, cut);
-  failed.failed(10.0);
-  failed.failed(10.0);
+  auto failed = bisecting_towards(10.0);
   EXPECT_NEAR(failed.limit(1.0, 9.985), 0.015, 1e-12);   // half of it would be below 0.01
   EXPECT_NEAR(failed.limit(1.0, 9.98), 0.01, 1e-12);     // half of 0.02 is still allowed
 }
 
 TEST(FailedLoad, ReachingTheLoadForgetsIt)
 {
-  FailedLoad failed(1.0, smallest, cut);
-  failed.failed(10.0);
-  failed.failed(10.0);
+  auto failed = bisecting_towards(10.0);
   failed.reached(9.5);
   EXPECT_DOUBLE_EQ(failed.limit(5.0, 9.5), 0.25);
   failed.reached(10.0);   // converged there from near: Newton had only been too far away
@@ -69,18 +72,14 @@ TEST(FailedLoad, ReachingTheLoadForgetsIt)
 
 TEST(FailedLoad, ForgetEndsTheBisection)
 {
-  FailedLoad failed(1.0, smallest, cut);
-  failed.failed(10.0);
-  failed.failed(10.0);
+  auto failed = bisecting_towards(10.0);
   failed.forget();   // jumped past it
   EXPECT_DOUBLE_EQ(failed.limit(5.0, 10.0), 5.0);
 }
 
 TEST(FailedLoad, UnloadingBisectsDownwards)
 {
-  FailedLoad failed(-1.0, smallest, cut);
-  failed.failed(-10.0);
-  failed.failed(-10.0);
+  auto failed = bisecting_towards(-10.0, -1.0);
   EXPECT_DOUBLE_EQ(failed.limit(5.0, -5.0), 2.5);
   failed.failed(-12.0);   // beyond, in the sense of travel
   EXPECT_DOUBLE_EQ(failed.limit(5.0, -6.0), 2.0);
