@@ -11,17 +11,53 @@ namespace spatula::app {
 
 namespace {
 
-std::vector<double> signature(const discretization::DiscreteSystem& system, const Scene& scene)
+// What a checkpoint must agree with, each entry with the name a message gives it.
+struct SignatureEntry {
+  const char* name;
+  double value;
+};
+
+std::vector<SignatureEntry> signature(const discretization::NodeSpace& nodes, const Scene& scene)
 {
   const auto& g = scene.geometry;
-  return {static_cast<double>(system.nodes().node_count()), static_cast<double>(system.nodes().hex8_elements.size()),
-          static_cast<double>(system.nodes().hex13_elements.size()), static_cast<double>(system.nodes().face_nodes),
-          g.a_s, g.b_s, g.c_s, g.l_s, g.l_p, g.h_p, g.h_r, g.w_p, g.r1, g.r2, g.r3, g.r4};
+  return {{"nodes (mesh and enrichment; 'Mesh/level', 'Mesh/refinement factor', 'Mesh/layers')",
+           static_cast<double>(nodes.node_count())},
+          {"Hex8 elements", static_cast<double>(nodes.hex8_elements.size())},
+          {"Hex13 elements ('Adhesion/enrichment')", static_cast<double>(nodes.hex13_elements.size())},
+          {"nodes per contact face ('Adhesion/enrichment')", static_cast<double>(nodes.face_nodes)},
+          {"Geometry/a_s", g.a_s}, {"Geometry/b_s", g.b_s}, {"Geometry/c_s", g.c_s}, {"Geometry/l_s", g.l_s},
+          {"Geometry/l_p", g.l_p}, {"Geometry/h_p", g.h_p}, {"Geometry/h_r", g.h_r}, {"Geometry/w_p", g.w_p},
+          {"Geometry/r1", g.r1}, {"Geometry/r2", g.r2}, {"Geometry/r3", g.r3}, {"Geometry/r4", g.r4}};
+}
+
+std::vector<SignatureEntry> material_signature(const Scene& scene)
+{
+  return {{"Material/E", scene.material.young}, {"Material/nu", scene.material.poisson}};
+}
+
+std::vector<double> values(const std::vector<SignatureEntry>& entries)
+{
+  std::vector<double> v;
+  for (const auto& entry : entries) v.push_back(entry.value);
+  return v;
+}
+
+std::string number(double value)
+{
+  std::ostringstream out;
+  out.precision(10);
+  out << value;
+  return out.str();
 }
 
 std::vector<double> history(const analysis::LoadPoint& p)
 {
   return {static_cast<double>(p.step), p.rotation, p.lift, p.slide, p.external_work, p.dissipated};
+}
+
+std::string restart_key(const Scene& scene)
+{
+  return "parameter 'Loading/restart file' = '" + scene.loading.restart_file + "'";
 }
 
 }  // namespace
@@ -33,8 +69,14 @@ std::string checkpoint_label(double theta_y_degrees)
   return label.str();
 }
 
-void write_checkpoint(const std::string& file, double theta_y_degrees, const discretization::DiscreteSystem& system,
-                      const discretization::Vector& x, const analysis::LoadPoint& point, const Scene& scene)
+std::string restart_label(const LoadingParameters& loading)
+{
+  return loading.restart_from_last_state ? last_state_label : checkpoint_label(loading.restart_theta_y);
+}
+
+void write_checkpoint(const std::string& file, const std::string& label, const discretization::DiscreteSystem& system,
+                      const discretization::Vector& x, const analysis::LoadPoint& point, const PathStage& stage,
+                      const Scene& scene)
 {
   const auto displacements = system.space_displacements(x);   // collective
   std::vector<double> masters;
@@ -42,29 +84,66 @@ void write_checkpoint(const std::string& file, double theta_y_degrees, const dis
   if (system.owned_map()->getComm()->getRank() != 0) return;
   const bool exists = std::filesystem::exists(file);
   io::Hdf5File out(file, exists ? io::Hdf5File::Mode::append : io::Hdf5File::Mode::create);
-  const std::string group = "/checkpoints/" + checkpoint_label(theta_y_degrees);
-  if (out.exists(group + "/displacements")) return;   // already taken (a restarted run passing it again)
+  const std::string group = "/checkpoints/" + label;
+  if (out.exists(group + "/displacements")) {
+    if (label != last_state_label) return;   // already taken (a restarted run passing it again)
+    out.remove(group);
+  }
   out.write(group + "/displacements", displacements, 3);
   out.write(group + "/masters", masters);
   out.write(group + "/history", history(point));
-  out.write(group + "/signature", signature(system, scene));
+  out.write(group + "/stage", std::vector<double>{stage.lifting ? 1.0 : 0.0, stage.lift_start});
+  out.write(group + "/signature", values(signature(system.nodes(), scene)));
+  out.write(group + "/material", values(material_signature(scene)));
 }
 
-analysis::LoadPoint read_checkpoint(const std::string& file, double theta_y_degrees,
-                                    const discretization::DiscreteSystem& system, discretization::Vector& x,
-                                    const Scene& scene)
+void check_checkpoint(const Scene& scene, const discretization::NodeSpace& nodes)
 {
-  if (!std::filesystem::exists(file))
-    throw parameters::InputError("parameter 'Loading/restart file' = '" + file + "': no such file");
-  io::Hdf5File in(file, io::Hdf5File::Mode::read);
-  const std::string label = checkpoint_label(theta_y_degrees);
+  const auto& file = scene.loading.restart_file;
+  if (file.empty()) return;
+  std::error_code error;
+  if (!std::filesystem::exists(file, error)) throw parameters::InputError(restart_key(scene) + ": no such file");
+  if (!std::filesystem::is_regular_file(file, error))
+    throw parameters::InputError(restart_key(scene) + ": not a regular file");
+  std::unique_ptr<io::Hdf5File> in;
+  try {
+    in = std::make_unique<io::Hdf5File>(file, io::Hdf5File::Mode::read);
+  } catch (const std::exception&) {
+    throw parameters::InputError(restart_key(scene) + ": not an HDF5 file (give the checkpoints.h5 of an earlier run)");
+  }
+  const std::string label = restart_label(scene.loading);
   const std::string group = "/checkpoints/" + label;
-  if (!in.exists(group + "/displacements"))
-    throw parameters::InputError("parameter 'Loading/restart theta_y' = " + std::to_string(theta_y_degrees) +
-                                 ": file '" + file + "' has no checkpoint " + label);
-  if (in.read_doubles(group + "/signature") != signature(system, scene))
-    throw parameters::InputError("checkpoint " + label + " in '" + file +
-                                 "' was made for another geometry, mesh or enrichment than this scene's");
+  const char* selector = scene.loading.restart_from_last_state ? "'Loading/restart from' = 'last state'"
+                                                               : "'Loading/restart theta_y'";
+  if (!in->exists(group + "/displacements") || !in->exists(group + "/signature"))
+    throw parameters::InputError(restart_key(scene) + " has no checkpoint '" + label + "' (asked for by " + selector +
+                                 ")");
+  auto compare = [&](const std::string& dataset, const std::vector<SignatureEntry>& expected) {
+    const auto stored = in->read_doubles(group + "/" + dataset);
+    if (stored.size() != expected.size())
+      throw parameters::InputError(restart_key(scene) + ": checkpoint '" + label + "' is not one this program wrote");
+    std::string mismatches;
+    for (std::size_t i = 0; i < expected.size(); ++i)
+      if (stored[i] != expected[i].value)
+        mismatches += std::string(mismatches.empty() ? "" : "; ") + expected[i].name + ": " + number(stored[i]) +
+                      " in the checkpoint, " + number(expected[i].value) + " in this scene";
+    if (!mismatches.empty())
+      throw parameters::InputError(restart_key(scene) + ": checkpoint '" + label +
+                                   "' was made for another scene (" + mismatches + ")");
+  };
+  compare("signature", signature(nodes, scene));
+  if (in->exists(group + "/material")) compare("material", material_signature(scene));
+  const auto stored_history = in->read_doubles(group + "/history");
+  if (stored_history.size() < 5 || in->read_doubles(group + "/masters").size() != discretization::master_count ||
+      in->read_doubles(group + "/displacements").size() != 3 * static_cast<std::size_t>(nodes.node_count()))
+    throw parameters::InputError(restart_key(scene) + ": checkpoint '" + label + "' is incomplete");
+}
+
+analysis::LoadPoint read_checkpoint(const Scene& scene, const discretization::DiscreteSystem& system,
+                                    discretization::Vector& x, PathStage& stage)
+{
+  io::Hdf5File in(scene.loading.restart_file, io::Hdf5File::Mode::read);
+  const std::string group = "/checkpoints/" + restart_label(scene.loading);
   system.set_space_displacements(x, in.read_doubles(group + "/displacements"));
   const auto masters = in.read_doubles(group + "/masters");
   for (int m = 0; m < discretization::master_count; ++m) system.set_master(x, discretization::Master(m), masters[m]);
@@ -76,6 +155,12 @@ analysis::LoadPoint read_checkpoint(const std::string& file, double theta_y_degr
   point.slide = h[3];
   point.external_work = h[4];
   point.dissipated = h.size() > 5 ? h[5] : 0.0;
+  stage = PathStage{};
+  if (in.exists(group + "/stage")) {
+    const auto s = in.read_doubles(group + "/stage");
+    stage.lifting = s.at(0) != 0.0;
+    stage.lift_start = s.at(1);
+  }
   return point;
 }
 

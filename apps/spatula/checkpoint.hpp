@@ -1,10 +1,12 @@
 #pragma once
 // Checkpoints of converged states in HDF5 (checkpoints.h5 in the output directory), and restarts from them:
-// a rotation run leaves its states at chosen inclinations, and pull-off runs start from them (as the paper does).
+// a rotation run leaves its states at chosen inclinations, and pull-off runs start from them (as the paper does);
+// a run that is interrupted or fails leaves its last converged state, to go on from.
 //
 // A checkpoint stores the displacements of every node of the node space (mesh and enrichment nodes), the three
-// end-face masters and the path history (step, external work), under /checkpoints/theta_y=<deg>, with a
-// signature (node and element counts, enrichment, geometry) checked on restart.
+// end-face masters, the path history (step, external work) and the stage (rotation or lift, and where the lift
+// began), under /checkpoints/<label>, with a signature (node and element counts, enrichment, geometry, material)
+// checked on restart.
 #include "load_stepping.hpp"
 #include "scene.hpp"
 
@@ -12,17 +14,31 @@
 
 namespace spatula::app {
 
-// The label of a checkpoint taken at inclination theta_y [deg].
+// The label of a checkpoint taken at inclination theta_y [deg], and of the last converged state of a stopped run.
 std::string checkpoint_label(double theta_y_degrees);
+inline const char* last_state_label = "last state";
+// The label a scene restarts from ('Loading/restart from', 'Loading/restart theta_y').
+std::string restart_label(const LoadingParameters& loading);
 
-// Rank 0 writes (all ranks must call: the state is gathered).
-void write_checkpoint(const std::string& file, double theta_y_degrees, const discretization::DiscreteSystem& system,
-                      const discretization::Vector& x, const analysis::LoadPoint& point, const Scene& scene);
+// Where on its path a checkpointed state was: in the rotation, or in the lift that began at `lift_start`.
+struct PathStage {
+  bool lifting = false;
+  double lift_start = 0.0;   // u_z where the lift began [nm]
+};
 
-// Reads a checkpoint into x and returns the path history; throws parameters::InputError naming the file and
-// label if missing or made for another mesh.
-analysis::LoadPoint read_checkpoint(const std::string& file, double theta_y_degrees,
-                                    const discretization::DiscreteSystem& system, discretization::Vector& x,
-                                    const Scene& scene);
+// Rank 0 writes (all ranks must call: the state is gathered). A label already in the file is kept, except the last
+// state, which is replaced.
+void write_checkpoint(const std::string& file, const std::string& label, const discretization::DiscreteSystem& system,
+                      const discretization::Vector& x, const analysis::LoadPoint& point, const PathStage& stage,
+                      const Scene& scene);
+
+// Checks, before anything is computed or written, that the scene's restart file holds its checkpoint and that the
+// checkpoint was made for this geometry, mesh, enrichment and material; throws parameters::InputError naming
+// 'Loading/restart file' and what does not match. `nodes` is this scene's node space.
+void check_checkpoint(const Scene& scene, const discretization::NodeSpace& nodes);
+
+// Reads the scene's checkpoint into x and returns the path history (checked by check_checkpoint before).
+analysis::LoadPoint read_checkpoint(const Scene& scene, const discretization::DiscreteSystem& system,
+                                    discretization::Vector& x, PathStage& stage);
 
 }  // namespace spatula::app

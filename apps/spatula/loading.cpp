@@ -3,6 +3,7 @@
 #include "parameter_validation.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 namespace spatula::app {
@@ -54,6 +55,10 @@ void LoadingParameters::declare(Teuchos::ParameterList& loading)
                              "checkpoints.h5 of an earlier run to start from (empty: the undeformed spatula)");
   parameters::declare_double(loading, "restart theta_y", 60.0, "the checkpoint to start from [deg]",
                              Range::closed(-180.0, 180.0));
+  parameters::declare_string(loading, "restart from", "checkpoint",
+                             "which state of the restart file: the checkpoint at 'restart theta_y', or the last "
+                             "converged state a stopped (interrupted or failed) run left",
+                             {"checkpoint", "last state"});
   parameters::declare_string(loading, "checkpoints at theta_y", "",
                              "comma-separated inclinations [deg] where a rotation writes checkpoints (e.g. 45,60)");
   auto& jump = parameters::declare_sublist(loading, "Jump", "energy descent past an instability");
@@ -85,6 +90,9 @@ LoadingParameters LoadingParameters::from(const Teuchos::ParameterList& loading)
   p.past_instabilities = loading.get<std::string>("past instabilities");
   p.restart_file = loading.get<std::string>("restart file");
   p.restart_theta_y = loading.get<double>("restart theta_y");
+  p.restart_from_last_state = loading.get<std::string>("restart from") == "last state";
+  if (p.restart_from_last_state && p.restart_file.empty())
+    throw parameters::InputError("parameter 'Loading/restart from' = 'last state' needs 'Loading/restart file' (empty)");
   std::stringstream list(loading.get<std::string>("checkpoints at theta_y"));
   for (std::string item; std::getline(list, item, ',');) {
     if (item.find_first_not_of(" \t") == std::string::npos) continue;
@@ -95,8 +103,10 @@ LoadingParameters LoadingParameters::from(const Teuchos::ParameterList& loading)
     } catch (const std::exception&) {
       used = 0;
     }
-    if (used == 0 || item.find_first_not_of(" \t", used) != std::string::npos || value < -180.0 || value > 180.0)
-      throw parameters::InputError("parameter 'Loading/checkpoints at theta_y': '" + item +
+    if (used == 0 || item.find_first_not_of(" \t", used) != std::string::npos || !std::isfinite(value) ||
+        value < -180.0 || value > 180.0)
+      throw parameters::InputError("parameter 'Loading/checkpoints at theta_y': '" +
+                                   (item.size() > 60 ? item.substr(0, 60) + "..." : item) +
                                    "' is not an inclination in [-180, 180] deg");
     p.checkpoints.push_back(value);
   }

@@ -22,6 +22,7 @@ struct LoadingParameters {
   std::string past_instabilities = "jump";   // a name in instability_methods()
   std::string restart_file;               // start from a checkpoint of an earlier run (empty: undeformed)
   double restart_theta_y = 0.0;           // which one [deg]
+  bool restart_from_last_state = false;   // the last converged state of a stopped run instead
   std::vector<double> checkpoints;        // inclinations [deg] at which a rotation leaves checkpoints
   analysis::JumpParameters jump;
   double step_balance_tolerance = 1e-4;   // over Pi_c0 (JumpParameters holds it in nN nm)

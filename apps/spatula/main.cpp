@@ -4,7 +4,11 @@
 //
 // Without a file it runs the embedded default scene (xml/default.xml). Every input is validated before anything
 // is computed or written; input errors name the key, the value and what is allowed (exit code 2).
+#include "checkpoint.hpp"
+#include "collective.hpp"
 #include "default_scene.hpp"
+#include "interruption.hpp"
+#include "preflight.hpp"
 #include "scene.hpp"
 #include "simulation.hpp"
 
@@ -21,6 +25,8 @@
 
 #include <fstream>
 #include <iostream>
+#include <memory>
+#include <optional>
 
 namespace {
 
@@ -69,6 +75,26 @@ void write_summary_files(const spatula::io::OutputDirectory& directory, const sp
   csv << "r5_nm," << shape.r5() << "\ntheta_s_deg," << shape.theta_s() * 180.0 / pi << "\n";
 }
 
+// What a stopped run leaves beside its partial results: why it stopped and how to go on.
+void write_failure_note(const spatula::io::OutputDirectory& directory, const spatula::app::Stop& stop, int exit_code)
+{
+  std::ofstream note(directory.file("FAILURE.txt"));
+  const auto& failure = stop.failure;
+  note << "spatula stopped before the end of its load path (exit code " << exit_code << ").\n"
+       << "why: " << failure.reason << "\n"
+       << "where: step " << failure.step << ", " << stop.stage << ", load " << failure.load
+       << (stop.stage == "lift" ? " nm (u_z)" : " (deg)");
+  if (failure.smallest_increment > 0.0)
+    note << ", not reached after cutting the increment to " << failure.smallest_increment;
+  note << "\nresults up to the last converged state: curve.csv, mesh_states.xmf (this directory)\n";
+  if (stop.checkpointed)
+    note << "to go on from the last converged state, run the scene again with\n"
+         << "  Loading/restart file = '" << directory.incomplete_path() << "/checkpoints.h5'\n"
+         << "  Loading/restart from = 'last state'\n"
+         << "and another Output/directory (a run into '" << directory.final_path()
+         << "' replaces this directory).\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -78,6 +104,9 @@ int main(int argc, char** argv)
   const auto comm = Teuchos::DefaultComm<int>::getComm();
   const bool root = comm->getRank() == 0;
   std::ostream& out = std::cout;
+  app::install_interruption_handlers();
+  std::unique_ptr<io::OutputDirectory> directory;   // rank 0, once the run has started
+  std::unique_ptr<io::XdmfOutput> fields;
 
   try {
     const Options options = parse(argc, argv);
@@ -85,67 +114,112 @@ int main(int argc, char** argv)
       if (root) app::valid_scene_parameters().print(out, Teuchos::ParameterList::PrintOptions().showDoc(true).indent(2).showTypes(true));
       return 0;
     }
-    const auto user = options.scene_file.empty()
-                          ? parameters::read_xml_string(app::default_scene_xml, "the embedded default scene")
-                          : parameters::read_xml_file(options.scene_file);
-    const app::Scene scene = app::read_scene(user);
-    const geometry::SpatulaShape shape(scene.geometry);
+    // Every check that can be made without solving, before anything is written; each ends on every rank together.
+    std::optional<app::Scene> scene;
+    std::optional<geometry::SpatulaShape> shape;
+    app::agree(*comm, [&] {
+      const auto user = options.scene_file.empty()
+                            ? parameters::read_xml_string(app::default_scene_xml, "the embedded default scene")
+                            : parameters::read_xml_file(options.scene_file);
+      scene = app::read_scene(user);
+      shape.emplace(scene->geometry);
+    });
+    app::agree(*comm, [&] { app::check_output_directory(*scene, options.scene_file); }, true);
+    // The mesh at refinement factors 1 and 2 first: checked, and the measure of what the requested one will need.
+    app::MemoryEstimate memory;
+    mesh::HexMesh mesh;
+    mesh::Partition partition;
+    app::agree(*comm, [&] {
+      Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: mesh"));
+      auto trial = *scene;
+      const int requested = scene->mesh.refinement_factor;
+      trial.mesh.refinement_factor = 1;
+      mesh = app::make_checked_mesh(trial, *shape);
+      const std::int64_t unrefined_nodes = mesh.node_count();
+      if (requested > 1) {
+        trial.mesh.refinement_factor = 2;
+        mesh = app::make_checked_mesh(trial, *shape);
+      }
+      memory = app::estimate_memory(*scene, unrefined_nodes, requested > 1 ? mesh.node_count() : 4 * unrefined_nodes);
+      app::check_memory(*scene, memory);
+      if (requested > 2) mesh = app::make_checked_mesh(*scene, *shape);
+      partition = mesh::partition_mesh(mesh, comm->getSize());
+      app::check_ranks(mesh, partition);
+    });
+    app::agree(*comm, [&] {
+      if (scene->loading.restart_file.empty()) return;
+      const auto enrichment = scene->adhesion.enabled ? scene->adhesion.settings.enrichment
+                                                      : discretization::Enrichment::q1c1;
+      app::check_checkpoint(*scene, discretization::make_node_space(mesh, partition, enrichment));
+    });
+
+    const auto summary = mesh::summarize(mesh, scene->mesh.level);
+    if (root) {
+      mesh::print(out, summary);
+      out << "  r5 [nm]                             " << shape->r5() << "\n"
+          << "  theta_s [deg]                       " << shape->theta_s() * 180.0 / pi << "\n"
+          << "  partition                           " << partition.ranks << " rank(s), elements per rank:";
+      for (int r = 0; r < partition.ranks; ++r) out << " " << partition.elements_of(r).size();
+      out << "\n  memory estimate                     " << memory.bytes / 1e9 << " GB of "
+          << memory.available_bytes / 1e9 << " GB available\n";
+    }
     if (options.validate_only) {
       if (root) out << "spatula: scene " << (options.scene_file.empty() ? "<default>" : options.scene_file) << " is valid\n";
       return 0;
     }
 
-    mesh::HexMesh mesh;
-    mesh::Partition partition;
-    {
-      Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: mesh"));
-      mesh = mesh::mesh_spatula(shape, scene.mesh);
-      partition = mesh::partition_mesh(mesh, comm->getSize());
-    }
-    const auto summary = mesh::summarize(mesh, scene.mesh.level);
-    std::unique_ptr<io::OutputDirectory> directory;
-    std::unique_ptr<io::XdmfOutput> fields;
-    if (root) {
-      mesh::print(out, summary);
-      out << "  r5 [nm]                             " << shape.r5() << "\n"
-          << "  theta_s [deg]                       " << shape.theta_s() * 180.0 / pi << "\n"
-          << "  partition                           " << partition.ranks << " rank(s), elements per rank:";
-      for (int r = 0; r < partition.ranks; ++r) out << " " << partition.elements_of(r).size();
-      out << "\n";
+    app::agree(*comm, [&] {
       Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: output"));
-      directory = std::make_unique<io::OutputDirectory>(scene.output.directory);
-      parameters::write_xml_file(scene.validated, directory->file("scene.xml"));
-      write_summary_files(*directory, summary, shape);
-      if (scene.output.write_mesh || scene.loading.type != "none")
+      directory = std::make_unique<io::OutputDirectory>(scene->output.directory);
+      parameters::write_xml_file(scene->validated, directory->file("scene.xml"));
+      write_summary_files(*directory, summary, *shape);
+      if (scene->output.write_mesh || scene->loading.type != "none")
         fields = std::make_unique<io::XdmfOutput>(directory->file(""), "mesh", mesh, partition);
-    }
-    if (scene.loading.type != "none") {
-      const auto failure =
-          app::run_simulation(scene, shape, mesh, partition, comm, directory.get(), fields.get(), out);
-      if (failure) {
+    }, true);
+    if (scene->loading.type != "none") {
+      const auto stop = app::run_simulation(*scene, *shape, mesh, partition, comm, directory.get(), fields.get(), out);
+      if (stop) {
+        const int exit_code = stop->signal ? 128 + stop->signal : 1;
         if (root) {
-          std::ofstream(directory->file("FAILURE.txt"))
-              << "step " << failure->step << ": load " << failure->load << " not reached (smallest increment "
-              << failure->smallest_increment << "): " << failure->reason << "\n";
+          fields.reset();
+          write_failure_note(*directory, *stop, exit_code);
           directory->abandon();
-          std::cerr << "spatula: solver failure at step " << failure->step << ", load " << failure->load
-                    << " (rotation theta_y - theta_s in deg, or lift in nm) after cutting the increment to " << failure->smallest_increment << ": "
-                    << failure->reason << "\nspatula: results up to the last converged step are in "
-                    << scene.output.directory << ".incomplete/\n";
+          std::cerr << "spatula: " << (stop->signal ? "interrupted" : "solver failure") << " at step "
+                    << stop->failure.step << ", " << stop->stage << " = " << stop->failure.load << ": "
+                    << stop->failure.reason << "\nspatula: results up to the last converged state, a checkpoint "
+                    << "to go on from and FAILURE.txt (how) are in " << directory->incomplete_path() << "/\n";
         }
-        return 3;
+        return exit_code;
       }
     }
     if (root) {
+      fields.reset();
       directory->commit();
-      out << "spatula: results in " << scene.output.directory << "/\n";
+      out << "spatula: results in " << scene->output.directory << "/\n";
     }
     Teuchos::TimeMonitor::summarize(comm.ptr(), out, false, true, false, Teuchos::Union, "spatula:");
   } catch (const parameters::InputError& error) {
-    if (root) std::cerr << "spatula: input error: " << error.what() << "\n";
-    return 2;
-  } catch (const std::exception& error) {
+    if (!directory) {   // agreed by every rank before anything was written
+      if (root) std::cerr << "spatula: input error: " << error.what() << "\n";
+      return 2;
+    }
     std::cerr << "spatula: error (rank " << comm->getRank() << "): " << error.what() << "\n";
+    return 1;
+  } catch (const app::AgreedFailure& error) {
+    if (root) std::cerr << "spatula: error: " << error.what() << "\n";
+    if (root && directory) directory->abandon();
+    return 1;
+  } catch (const std::exception& error) {
+    // A failure on some ranks during the run: the others may be waiting in a collective call, so the job ends here.
+    std::cerr << "spatula: error (rank " << comm->getRank() << "): " << error.what() << "\n";
+    if (directory) {
+      fields.reset();
+      std::ofstream(directory->file("FAILURE.txt")) << "spatula stopped with an error (exit code 1): " << error.what()
+                                                    << "\n";
+      directory->abandon();
+      std::cerr << "spatula: partial results in " << directory->incomplete_path() << "/\n";
+    }
+    if (comm->getSize() > 1) app::abort_all(1);
     return 1;
   }
   return 0;

@@ -7,7 +7,11 @@ namespace spatula::app {
 void OutputParameters::declare(Teuchos::ParameterList& output)
 {
   parameters::declare_string(output, "directory", "spatula-output",
-                             "directory for all results (replaced atomically at the end of the run)");
+                             "directory for all results, written as <directory>.partial and renamed at the end of the "
+                             "run (<directory>.incomplete if it fails); never the working directory, one above it, or a "
+                             "file or folder that spatula did not write");
+  parameters::declare_bool(output, "overwrite", true,
+                           "replace an earlier result of spatula in 'directory' (false: refuse any existing directory)");
   parameters::declare_bool(output, "write mesh", true, "write the mesh as HDF5 + XDMF");
   parameters::declare_int(output, "field interval", 0,
                           "write displacement and I1 fields every this many converged steps (0: first and last)",
@@ -19,6 +23,7 @@ OutputParameters OutputParameters::from(const Teuchos::ParameterList& output)
 {
   OutputParameters p;
   p.directory = output.get<std::string>("directory");
+  p.overwrite = output.get<bool>("overwrite");
   p.write_mesh = output.get<bool>("write mesh");
   p.field_interval = output.get<int>("field interval");
   p.convergence_tables = output.get<bool>("convergence tables");

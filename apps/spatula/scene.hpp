@@ -15,6 +15,7 @@ namespace spatula::app {
 
 struct OutputParameters {
   std::string directory = "spatula-output";
+  bool overwrite = true;           // replace an earlier result of this program
   bool write_mesh = true;
   int field_interval = 0;          // write fields every this many converged steps (0: start and end only)
   bool convergence_tables = false;   // print every Newton iteration

@@ -1,6 +1,7 @@
 #include "simulation.hpp"
 
 #include "checkpoint.hpp"
+#include "interruption.hpp"
 
 #include <Teuchos_TimeMonitor.hpp>
 
@@ -61,7 +62,7 @@ private:
 
 }  // namespace
 
-std::optional<analysis::Failure> run_simulation(const Scene& scene, const geometry::SpatulaShape& shape,
+std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaShape& shape,
                                                 const mesh::HexMesh& mesh, const mesh::Partition& partition,
                                                 Teuchos::RCP<const Teuchos::Comm<int>> comm,
                                                 const io::OutputDirectory* directory, io::XdmfOutput* fields,
@@ -138,6 +139,7 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
     const int interval = scene.output.field_interval;
     if (interval > 0 && p.step % interval == 0)
       write_fields(x, std::string(stage) == "rotation" ? (theta_s + p.rotation) / degree : p.lift);
+    stop_if_interrupted(*comm);   // a signal stops the run here, at a converged state, on every rank
   };
 
   // Detachment ends a path cleanly: the moment (rotation) or the pull (lift) has collapsed to under 1 % of its peak
@@ -175,7 +177,7 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
     auto guess = system->create_vector();
     system->set_displacements(*guess, u);
     const auto failure = path.equilibrate(*guess, LoadPath::spatula_control(Master::rotation, loading.free_lift));
-    if (failure) return failure;
+    if (failure) return Stop{*failure, 0, false, "rough substrate contact"};
     if (root) out << "pad pressed onto the rough substrate (z0 = " << adhesion.rough.z0 << " nm): equilibrium found\n";
     initial_contact = path.last().contact_energy;   // the energies count from this state
     initial_internal = path.last().internal_energy;
@@ -183,45 +185,55 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
   if (root)
     curve = std::make_unique<CurveWriter>(directory->file("curve.csv"), young, reference_energy, initial_internal,
                                           initial_contact);
+  PathStage path_stage;   // where the path is: rotation, or lift from where
   if (!loading.restart_file.empty()) {
     auto x = system->create_vector();
-    const auto history = read_checkpoint(loading.restart_file, loading.restart_theta_y, *system, *x, scene);
+    const auto history = read_checkpoint(scene, *system, *x, path_stage);
     if (adhesion.anchor_at_restart) system->set_contact_anchors(*x);   // r_a = 0 here: the same energy and forces
     path.restart(*x, history);
+    if (path_stage.lifting) stage = "lift";
     if (root)
-      out << "restart from " << checkpoint_label(loading.restart_theta_y) << " of " << loading.restart_file
-          << " (step " << history.step << ", u_z " << history.lift << " nm)"
+      out << "restart from '" << restart_label(loading) << "' of " << loading.restart_file << " (step "
+          << history.step << ", u_z " << history.lift << " nm" << (path_stage.lifting ? ", in the lift" : "") << ")"
           << (adhesion.anchor_at_restart ? "; stiction anchors set at this state" : "") << "\n";
   }
   if (root) curve->write(path.last(), stage, theta_s);
   write_fields(path.state(), (theta_s + path.last().rotation) / degree);
-  // The rotation, stopping at every checkpoint inclination on the way.
+  // The rotation, stopping at every checkpoint inclination on the way, then the lift. A signal ends either at a
+  // converged state (Interrupted, on every rank together).
   std::optional<analysis::Failure> failure;
-  std::vector<double> stops;
-  const double current = (theta_s + path.last().rotation) / degree;
-  for (double c : loading.checkpoints)
-    if (c > current + 1e-9 && c < loading.theta_y - 1e-9) stops.push_back(c);
-  stops.push_back(loading.theta_y);
-  for (double stop : stops) {
-    failure = path.advance(Master::rotation, stop * degree - theta_s,
-                           LoadPath::spatula_control(Master::rotation, loading.free_lift), loading.rotation_steps,
-                           degree, on_point);
-    if (failure || path.detached()) break;
-    if (std::find(loading.checkpoints.begin(), loading.checkpoints.end(), stop) != loading.checkpoints.end()) {
-      write_checkpoint(directory ? directory->file("checkpoints.h5") : "", stop, *system, path.state(), path.last(),
-                       scene);
-      if (root) out << "checkpoint " << checkpoint_label(stop) << " written\n";
+  int interrupted_by = 0;
+  try {
+    std::vector<double> stops;
+    const double current = (theta_s + path.last().rotation) / degree;
+    for (double c : loading.checkpoints)
+      if (c > current + 1e-9 && c < loading.theta_y - 1e-9) stops.push_back(c);
+    if (!path_stage.lifting) stops.push_back(loading.theta_y);
+    for (double stop : stops) {
+      failure = path.advance(Master::rotation, stop * degree - theta_s,
+                             LoadPath::spatula_control(Master::rotation, loading.free_lift), loading.rotation_steps,
+                             degree, on_point);
+      if (failure || path.detached()) break;
+      if (std::find(loading.checkpoints.begin(), loading.checkpoints.end(), stop) != loading.checkpoints.end()) {
+        write_checkpoint(directory ? directory->file("checkpoints.h5") : "", checkpoint_label(stop), *system,
+                         path.state(), path.last(), path_stage, scene);
+        if (root) out << "checkpoint " << checkpoint_label(stop) << " written\n";
+      }
     }
-  }
-  if (!failure && !path.detached() && loading.type == "lift") {
-    stage = "lift";
-    const double target = loading.final_lift + (loading.lift_relative ? path.last().lift : 0.0);
-    auto control = LoadPath::spatula_control(Master::lift, false);
-    control.prescribed[static_cast<int>(Master::slide)] = !loading.free_slide;
-    failure = path.advance(Master::lift, target, control, loading.lift_steps, 1.0, on_point);
+    if (!failure && !path.detached() && loading.type == "lift") {
+      stage = "lift";
+      if (!path_stage.lifting) path_stage = PathStage{true, path.last().lift};
+      const double target = loading.final_lift + (loading.lift_relative ? path_stage.lift_start : 0.0);
+      auto control = LoadPath::spatula_control(Master::lift, false);
+      control.prescribed[static_cast<int>(Master::slide)] = !loading.free_slide;
+      failure = path.advance(Master::lift, target, control, loading.lift_steps, 1.0, on_point);
+    }
+  } catch (const Interrupted& signal) {
+    interrupted_by = signal.signal;
+    if (root) out << "spatula: " << signal.what() << " at step " << path.last().step << "; stopping\n";
   }
   // No equilibrium beyond a state where most of the pad has let go: that is the detachment.
-  if (failure && options.contact && released_fraction(path.last()) > 0.5) {
+  if (!interrupted_by && failure && options.contact && released_fraction(path.last()) > 0.5) {
     if (root)
       out << "detachment: no equilibrium beyond " << stage << " = " << failure->load << " (" << failure->reason
           << ")\n";
@@ -241,7 +253,19 @@ std::optional<analysis::Failure> run_simulation(const Scene& scene, const geomet
           << statistics.factorization_seconds << " s), " << statistics.solves << " solves";
     out << "\n";
   }
-  return failure;
+  if (!failure && !interrupted_by) return std::nullopt;
+  // The last converged state, to go on from (Loading/restart from = last state).
+  Stop stop;
+  stop.signal = interrupted_by;
+  stop.stage = stage;
+  if (failure) stop.failure = *failure;
+  else stop.failure = analysis::Failure{last.step, std::string(stage) == "rotation" ? (theta_s + last.rotation) / degree
+                                                                                     : last.lift, 0.0,
+                                        Interrupted(interrupted_by).what()};
+  write_checkpoint(directory ? directory->file("checkpoints.h5") : "", last_state_label, *system, path.state(), last,
+                   path_stage, scene);   // collective
+  stop.checkpointed = true;
+  return stop;
 }
 
 }  // namespace spatula::app

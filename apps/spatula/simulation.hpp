@@ -9,11 +9,21 @@
 
 #include <optional>
 #include <ostream>
+#include <string>
 
 namespace spatula::app {
 
-// Returns the failure (step, load, reason) if the load path could not be followed to its end.
-std::optional<analysis::Failure> run_simulation(const Scene& scene, const geometry::SpatulaShape& shape,
+// Why a run stopped before the end of its load path: a failure (step, load, reason), or a signal (SIGINT,
+// SIGTERM) at a converged state. Either way the last converged state is checkpointed as 'last state'.
+struct Stop {
+  analysis::Failure failure;
+  int signal = 0;                    // the signal that interrupted the run, 0 for a failure
+  bool checkpointed = false;         // 'last state' written to checkpoints.h5
+  std::string stage = "rotation";    // the stage it stopped in
+};
+
+// Returns why the run stopped, if the load path could not be followed to its end.
+std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaShape& shape,
                                                 const mesh::HexMesh& mesh, const mesh::Partition& partition,
                                                 Teuchos::RCP<const Teuchos::Comm<int>> comm,
                                                 const io::OutputDirectory* directory, io::XdmfOutput* fields,

@@ -125,6 +125,11 @@ std::vector<std::int64_t> Hdf5File::read_integers(const std::string& path) const
   return read_dataset<std::int64_t>(static_cast<hid_t>(handle_), file_name_, path);
 }
 
+void Hdf5File::remove(const std::string& path)
+{
+  if (H5Ldelete(static_cast<hid_t>(handle_), path.c_str(), H5P_DEFAULT) < 0) fail("remove", file_name_, path);
+}
+
 bool Hdf5File::exists(const std::string& path) const
 {
   std::size_t slash = 0;

@@ -21,6 +21,7 @@ public:
   void write(const std::string& path, const std::vector<std::int64_t>& values, std::size_t columns = 1);
   void write(const std::string& path, const std::vector<int>& values, std::size_t columns = 1);
   void write_attribute(const std::string& path, const std::string& name, double value);
+  void remove(const std::string& path);   // unlinks a dataset or group (its space is not reclaimed)
 
   std::vector<double> read_doubles(const std::string& path) const;
   std::vector<std::int64_t> read_integers(const std::string& path) const;

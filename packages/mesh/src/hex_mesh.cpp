@@ -105,13 +105,14 @@ HexMesh HexMeshBuilder::finish(double tolerance)
   //    keeps the bottom face at the bottom).
   mesh.parts = parts_;
   mesh.elements.reserve(elements_.size());
-  for (const auto& original : elements_) {
+  for (std::size_t e = 0; e < elements_.size(); ++e) {
+    const auto& original = elements_[e];
     Hexahedron element;
     for (int a = 0; a < 8; ++a) element[a] = merged[original[a]];
     auto sorted = element;
     std::sort(sorted.begin(), sorted.end());
     if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
-      throw std::logic_error("mesher produced a degenerate hexahedron (repeated node)");
+      throw MeshingError(parts_[e], "an element collapsed onto itself (two of its corners merged)");
     if (element_centre_jacobian(mesh, element) < 0.0) {
       std::swap(element[1], element[3]);
       std::swap(element[5], element[7]);
@@ -155,7 +156,7 @@ std::vector<Side> boundary_sides(const HexMesh& mesh)
   for (std::size_t i = 0; i < faces.size();) {
     std::size_t j = i + 1;
     while (j < faces.size() && faces[j].key == faces[i].key) ++j;
-    if (j - i > 2) throw std::logic_error("a face is shared by more than two hexahedra");
+    if (j - i > 2) throw MeshingError(mesh.parts[faces[i].side.element], "a face is shared by more than two elements (parts overlap)");
     if (j - i == 1) boundary.push_back(faces[i].side);
     i = j;
   }

@@ -2,6 +2,7 @@
 // A conforming mesh of trilinear hexahedra with element blocks (the spatula's parts), node sets and side sets.
 #include <array>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,13 @@ struct HexMesh {
   const std::vector<Side>& sides(Boundary b) const { return side_sets[static_cast<int>(b)]; }
   // The four node ids of a side, outward ordered.
   std::array<std::int64_t, 4> side_nodes(const Side& side) const;
+};
+
+// The geometry cannot be meshed conformingly (parts that do not fit together); `part` is where it was found.
+class MeshingError : public std::runtime_error {
+public:
+  MeshingError(Part part, const std::string& what) : std::runtime_error(what), part(part) {}
+  Part part;
 };
 
 // Assembles a HexMesh from parts that each create their own nodes: coincident nodes (within a tolerance) are

@@ -81,6 +81,22 @@ double side_area(const HexMesh& mesh, const Side& side)
   return area;
 }
 
+std::optional<ElementDefect> find_defective_element(const HexMesh& mesh)
+{
+  std::optional<ElementDefect> worst;
+  std::int64_t count = 0;
+  for (std::int64_t e = 0; e < mesh.element_count(); ++e) {
+    const auto jacobians = gauss_point_jacobians(mesh, e);
+    const double gauss = *std::min_element(jacobians.begin(), jacobians.end());
+    const double scaled = scaled_jacobian(mesh, e);
+    if (gauss > 0.0 && scaled >= smallest_scaled_jacobian && std::isfinite(gauss) && std::isfinite(scaled)) continue;
+    ++count;
+    if (!worst || !(scaled >= worst->scaled_jacobian)) worst = ElementDefect{e, mesh.parts[e], gauss, scaled, 0};
+  }
+  if (worst) worst->defective_elements = count;
+  return worst;
+}
+
 MeshSummary summarize(const HexMesh& mesh, const std::string& level)
 {
   MeshSummary summary;

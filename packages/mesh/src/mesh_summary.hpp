@@ -5,6 +5,7 @@
 
 #include <array>
 #include <iosfwd>
+#include <optional>
 #include <string>
 
 namespace spatula::mesh {
@@ -29,6 +30,18 @@ MeshSummary summarize(const HexMesh& mesh, const std::string& level);
 std::array<double, 8> gauss_point_jacobians(const HexMesh& mesh, std::int64_t element);
 // Minimum over the 8 corners of det[e1 e2 e3] with e_i the unit edge vectors leaving the corner.
 double scaled_jacobian(const HexMesh& mesh, std::int64_t element);
+// An element the solid cannot use: det J <= 0 at a Gauss point (inverted or tangled), or a corner's scaled
+// Jacobian below `smallest_scaled_jacobian` (degenerate, flattened to almost no volume).
+struct ElementDefect {
+  std::int64_t element = 0;
+  Part part = Part::shaft_and_rim;
+  double gauss_jacobian = 0.0;     // smallest det J at its Gauss points [nm^3]
+  double scaled_jacobian = 0.0;    // smallest at its corners
+  std::int64_t defective_elements = 0;   // how many elements of the mesh are like it
+};
+constexpr double smallest_scaled_jacobian = 1e-3;
+// The worst defective element of the mesh (the smallest scaled Jacobian), or nothing if every element is usable.
+std::optional<ElementDefect> find_defective_element(const HexMesh& mesh);
 // Area of a side (bilinear quadrilateral), by 2x2 Gauss quadrature.
 double side_area(const HexMesh& mesh, const Side& side);
 

@@ -258,7 +258,7 @@ std::vector<Block> thin_pad_blocks(const Block& band, double pad_height, int k)
   const Vec2 c1{std::max(bisector_foot(k1, outline[x1], core_top[1]).x, 0.5 * (p11.x + k1.x)), 0.0};
   const Vec2 c2{std::min(bisector_foot(k2, outline[x2], core_top[core_top.size() - 2]).x, 0.5 * (k2.x + p8.x)), 0.0};
   if (!(p11.x < c1.x && c1.x < c2.x && c2.x < p8.x))
-    throw std::logic_error("thin pad C-grid: core corners outside the pad (geometry too far from the defaults)");
+    throw MeshingError(Part::thin_pad, "the thin pad's grid does not fit inside its outline");
 
   std::vector<Block> blocks;
   blocks.push_back(transfinite(straight(c1, c2, x2 - x1, symmetry_flag), Edge{core_top}, straight(c1, k1, x1),

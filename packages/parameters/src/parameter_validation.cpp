@@ -6,7 +6,9 @@
 #include <Teuchos_XMLParameterListReader.hpp>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -26,6 +28,12 @@ std::string format_number(double value)
   out.precision(10);
   out << value;
   return out.str();
+}
+
+// A value as quoted in a message: at most 60 characters of it.
+std::string shorten(const std::string& value)
+{
+  return value.size() > 60 ? value.substr(0, 60) + "... (" + std::to_string(value.size()) + " characters)" : value;
 }
 
 std::string join(const std::vector<std::string>& words)
@@ -97,9 +105,9 @@ void declare(ParameterList& list, const std::string& name, const T& default_valu
 std::string describe_entry(const Teuchos::ParameterEntry& entry)
 {
   std::ostringstream out;
-  out << entry.getAny(false).typeName() << " '";
-  entry.getAny(false).print(out);
-  out << "'";
+  std::ostringstream value;
+  entry.getAny(false).print(value);
+  out << entry.getAny(false).typeName() << " '" << shorten(value.str()) << "'";
   return out.str();
 }
 
@@ -139,7 +147,7 @@ void check_value(Teuchos::ParameterEntry& entry, const Constraint& constraint, c
       const auto& value = Teuchos::any_cast<std::string>(any);
       const auto& allowed = constraint.allowed();
       if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), value) == allowed.end())
-        throw InputError("parameter '" + key + "' = '" + value + "' is not allowed; allowed: " +
+        throw InputError("parameter '" + key + "' = '" + shorten(value) + "' is not allowed; allowed: " +
                          constraint.describe_allowed());
       break;
     }
@@ -228,34 +236,82 @@ void validate(ParameterList& user, const ParameterList& valid, const std::string
   }
 }
 
-// Teuchos reads value="abc" of type double as 0 without complaint: check every literal before converting.
+// Checks the XML tree before Teuchos converts it, because Teuchos is lenient where a scene must not be: it reads
+// value="abc" of type double as 0, an int beyond its range modulo 2^32, a repeated key as the last one given and a
+// repeated sublist as the two merged. Every problem is an InputError naming the key (and, for a repeated key, the
+// lines of the text that give it).
 namespace {
 
-void check_literals(const Teuchos::XMLObject& node, const std::string& path)
+// The lines of `text` on which name="<name>" appears (1-based), for messages about repeated keys.
+std::string lines_naming(const std::string& text, const std::string& name)
 {
+  const std::string needle = "name=\"" + name + "\"";
+  std::string lines;
+  int count = 0;
+  for (auto at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) {
+    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n');
+    lines += (count++ == 0 ? "" : ", ") + std::to_string(line);
+  }
+  return count > 1 ? " (lines " + lines + ")" : "";
+}
+
+bool is_number(const std::string& value, double& number)
+{
+  // strtod, unlike a stream, reads "nan" and "inf": they are numbers here and refused below by name.
+  if (value.empty() || std::isspace(static_cast<unsigned char>(value.front()))) return false;
+  errno = 0;
+  char* end = nullptr;
+  number = std::strtod(value.c_str(), &end);
+  while (end && *end && std::isspace(static_cast<unsigned char>(*end))) ++end;
+  return end && *end == '\0' && !(errno == ERANGE && std::isinf(number));
+}
+
+void check_literal(const std::string& key, const std::string& type, const std::string& value)
+{
+  auto invalid = [&](const std::string& why) {
+    throw InputError("parameter '" + key + "': value '" + shorten(value) + "' " + why);
+  };
+  if (type == "double") {
+    double number = 0.0;
+    if (!is_number(value, number)) invalid("is not a valid double (or is beyond its range, about 1.8e308)");
+    if (!std::isfinite(number)) invalid("is not a finite number");
+  } else if (type == "int") {
+    errno = 0;
+    char* end = nullptr;
+    const long long number = value.empty() ? 0 : std::strtoll(value.c_str(), &end, 10);
+    if (value.empty() || !end || *end != '\0' || std::isspace(static_cast<unsigned char>(value.front())))
+      invalid("is not a valid int");
+    if (errno == ERANGE || number < std::numeric_limits<int>::min() || number > std::numeric_limits<int>::max())
+      invalid("is outside the range of int [" + std::to_string(std::numeric_limits<int>::min()) + ", " +
+              std::to_string(std::numeric_limits<int>::max()) + "]");
+  } else if (type == "bool") {
+    if (value != "true" && value != "false" && value != "1" && value != "0") invalid("is not a valid bool (true or false)");
+  }
+}
+
+void check_tree(const Teuchos::XMLObject& node, const std::string& path, const std::string& text)
+{
+  std::vector<std::string> names;
   for (int i = 0; i < node.numChildren(); ++i) {
     const auto& child = node.getChild(i);
-    const std::string name = child.hasAttribute("name") ? child.getAttribute("name") : "?";
-    if (child.getTag() == "ParameterList") {
-      check_literals(child, key_path(path, name));
+    const std::string& tag = child.getTag();
+    if (tag != "ParameterList" && tag != "Parameter") continue;   // Teuchos' own elements (validators) pass on
+    const std::string where = path.empty() ? "the top level" : "'" + path + "'";
+    if (!child.hasAttribute("name"))
+      throw InputError("a <" + tag + "> in " + where + " has no name attribute");
+    const std::string name = child.getAttribute("name");
+    const std::string key = key_path(path, name);
+    if (std::find(names.begin(), names.end(), name) != names.end())
+      throw InputError(std::string(tag == "ParameterList" ? "sublist" : "parameter") + " '" + key +
+                       "' is given twice" + lines_naming(text, name) + " in " + where + ": give each key once");
+    names.push_back(name);
+    if (tag == "ParameterList") {
+      check_tree(child, key, text);
       continue;
     }
-    if (child.getTag() != "Parameter" || !child.hasAttribute("type") || !child.hasAttribute("value")) continue;
-    const std::string type = child.getAttribute("type");
-    const std::string value = child.getAttribute("value");
-    std::istringstream in(value);
-    bool ok = true;
-    if (type == "double") {
-      double number;
-      ok = static_cast<bool>(in >> number) && (in >> std::ws).eof();
-    } else if (type == "int") {
-      long number;
-      ok = static_cast<bool>(in >> number) && (in >> std::ws).eof();
-    } else if (type == "bool") {
-      ok = value == "true" || value == "false" || value == "1" || value == "0";
-    }
-    if (!ok)
-      throw InputError("parameter '" + key_path(path, name) + "': value '" + value + "' is not a valid " + type);
+    if (!child.hasAttribute("type")) throw InputError("parameter '" + key + "' has no type attribute");
+    if (!child.hasAttribute("value")) throw InputError("parameter '" + key + "' has no value attribute");
+    check_literal(key, child.getAttribute("type"), child.getAttribute("value"));
   }
 }
 
@@ -265,7 +321,7 @@ ParameterList read_xml_string(const std::string& xml, const std::string& origin)
 {
   try {
     const Teuchos::XMLObject root = Teuchos::StringInputSource(xml).getObject();
-    check_literals(root, "");
+    check_tree(root, "", xml);
     return Teuchos::XMLParameterListReader().toParameterList(root);
   } catch (const InputError& error) {
     throw InputError("in " + origin + ": " + error.what());

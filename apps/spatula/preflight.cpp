@@ -1,0 +1,207 @@
+#include "preflight.hpp"
+
+#include "mesh_summary.hpp"
+#include "output_directory.hpp"
+#include "parameter_validation.hpp"
+#include "spatula_mesher.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <vector>
+
+namespace spatula::app {
+
+namespace {
+
+std::string gigabytes(double bytes)
+{
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(bytes < 1e10 ? 2 : 0) << bytes / 1e9 << " GB";
+  return out.str();
+}
+
+double available_memory()
+{
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  double kilobytes = 0.0;
+  std::string unit;
+  while (meminfo >> key >> kilobytes >> unit)
+    if (key == "MemAvailable:") return kilobytes * 1024.0;
+  return 0.0;   // unknown: no check
+}
+
+// Peak memory for n unknowns. Matrix: ~81 entries per row (27 neighbouring nodes x 3), held by Tpetra (values and
+// indices, owned and overlapping rows) and copied once by the solver: about 2.5 x 12 bytes per entry. Direct solver
+// (MUMPS LDL^T): the fine mesh's measured 3.5 GB at 318,087 unknowns, grown as n^(4/3). ILU(k): k + 2 matrices.
+struct MemoryModel {
+  static constexpr double entries_per_unknown = 81.0, bytes_per_entry = 30.0;
+  static constexpr double measured_unknowns = 318087.0, measured_bytes = 3.5e9;
+  static double direct(double unknowns) { return measured_bytes * std::pow(unknowns / measured_unknowns, 4.0 / 3.0); }
+  static double iterative(double unknowns, int fill)
+  {
+    return (fill + 2) * entries_per_unknown * bytes_per_entry * unknowns;
+  }
+};
+
+double peak_bytes(const Scene& scene, double unknowns)
+{
+  return scene.linear_solver.type == "mumps" ? MemoryModel::direct(unknowns)
+                                             : MemoryModel::iterative(unknowns, scene.linear_solver.fill_level);
+}
+
+// A geometry parameter as a message names it.
+struct GeometryParameter {
+  const char* name;
+  double geometry::ShapeParameters::*value;
+};
+
+// The geometry parameters that shape each part of the mesh (paper Fig. 2).
+std::vector<GeometryParameter> part_parameters(mesh::Part part)
+{
+  using P = geometry::ShapeParameters;
+  const GeometryParameter a_s{"a_s", &P::a_s}, b_s{"b_s", &P::b_s}, c_s{"c_s", &P::c_s}, l_s{"l_s", &P::l_s},
+      l_p{"l_p", &P::l_p}, h_p{"h_p", &P::h_p}, h_r{"h_r", &P::h_r}, w_p{"w_p", &P::w_p}, r1{"r1", &P::r1},
+      r2{"r2", &P::r2}, r3{"r3", &P::r3}, r4{"r4", &P::r4};
+  switch (part) {
+    case mesh::Part::shaft_and_rim: return {a_s, b_s, c_s, l_s, l_p, h_r, w_p, r1, r3};
+    case mesh::Part::outer_pad: return {l_p, w_p, h_r, h_p, r1, r2, r3, r4};
+    case mesh::Part::prism: return {l_p, h_r, h_p, r3, r4};
+    case mesh::Part::thin_pad: return {l_p, w_p, h_p, r2, r4};
+  }
+  return {};
+}
+
+// Whether a geometry can be meshed into usable elements (at the scene's mesh level).
+bool meshes_well(const geometry::ShapeParameters& parameters, const mesh::MeshParameters& density)
+{
+  try {
+    const geometry::SpatulaShape shape(parameters);
+    return !mesh::find_defective_element(mesh::mesh_spatula(shape, density));
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+// For each parameter of the part that the scene moved from its default: where between the scene's value and the
+// default the mesh becomes usable, the others as given (bisection, 12 halvings). "l_p >= about 171 (default 350)".
+std::string usable_ranges(const Scene& scene, mesh::Part part)
+{
+  const geometry::ShapeParameters defaults;
+  auto density = scene.mesh;
+  density.refinement_factor = 1;
+  std::ostringstream ranges;
+  for (const auto& parameter : part_parameters(part)) {
+    const double given = scene.geometry.*(parameter.value), preset = defaults.*(parameter.value);
+    if (given == preset) continue;
+    auto trial = scene.geometry;
+    trial.*(parameter.value) = preset;
+    if (!meshes_well(trial, density)) continue;   // moving this one alone does not help
+    double bad = given, good = preset;
+    for (int halving = 0; halving < 12; ++halving) {
+      trial.*(parameter.value) = 0.5 * (bad + good);
+      (meshes_well(trial, density) ? good : bad) = 0.5 * (bad + good);
+    }
+    ranges << (ranges.tellp() > 0 ? "; " : "") << "'Geometry/" << parameter.name << "' = " << given
+           << (given < preset ? " is too small: usable from about " : " is too large: usable up to about ")
+           << std::setprecision(4) << good << " (default " << preset << ")";
+  }
+  return ranges.str();
+}
+
+// The message for a geometry whose parts do not fit together at `part`.
+[[noreturn]] void geometry_does_not_fit(const Scene& scene, mesh::Part part, const std::string& what)
+{
+  std::ostringstream message;
+  message << "the geometry's parts do not fit together in " << mesh::part_name(part) << ": " << what
+          << ". The parameters that shape this part:";
+  for (const auto& parameter : part_parameters(part)) message << " 'Geometry/" << parameter.name << "'";
+  const std::string ranges = usable_ranges(scene, part);
+  message << (ranges.empty() ? " (move them towards the paper's Table 2 values)" : ". With the others as given: " + ranges);
+  throw parameters::InputError(message.str());
+}
+
+}  // namespace
+
+void check_output_directory(const Scene& scene, const std::string& scene_file)
+{
+  const auto& directory = scene.output.directory;
+  const std::string key = "parameter 'Output/directory' = '" + (directory.size() > 60 ? directory.substr(0, 60) + "..." : directory) + "'";
+  if (const auto why = io::OutputDirectory::refusal(directory, scene.output.overwrite))
+    throw parameters::InputError(key + " cannot be used: " + *why);
+  if (!scene_file.empty() && io::OutputDirectory::would_replace(directory, scene_file))
+    throw parameters::InputError(key + " would replace the scene file '" + scene_file +
+                                 "' itself: copy the scene elsewhere or choose another directory");
+  if (!scene.loading.restart_file.empty() && io::OutputDirectory::would_replace(directory, scene.loading.restart_file))
+    throw parameters::InputError(key + " would replace 'Loading/restart file' = '" + scene.loading.restart_file +
+                                 "' before the run could finish: choose another 'Output/directory'");
+}
+
+MemoryEstimate estimate_memory(const Scene& scene, std::int64_t unrefined_nodes, std::int64_t refined_nodes)
+{
+  // nodes(r) = a + b r^2 through r = 1 and 2 (the pad refines in plane, the shaft does not).
+  MemoryEstimate estimate;
+  estimate.refined_nodes = (refined_nodes - unrefined_nodes) / 3.0;
+  estimate.fixed_nodes = unrefined_nodes - estimate.refined_nodes;
+  estimate.nodes = static_cast<std::int64_t>(estimate.nodes_at(scene.mesh.refinement_factor));
+  estimate.unknowns = 3 * estimate.nodes;
+  estimate.matrix_entries = static_cast<std::int64_t>(MemoryModel::entries_per_unknown * estimate.unknowns);
+  estimate.bytes = peak_bytes(scene, double(estimate.unknowns));
+  estimate.available_bytes = available_memory();
+  return estimate;
+}
+
+void check_memory(const Scene& scene, const MemoryEstimate& estimate)
+{
+  constexpr double usable = 0.9;   // of MemAvailable
+  if (estimate.available_bytes <= 0.0 || estimate.bytes <= usable * estimate.available_bytes) return;
+  const auto& m = scene.mesh;
+  std::ostringstream message;
+  message << "the mesh ('Mesh/level' = '" << m.level << "', 'Mesh/refinement factor' = " << m.refinement_factor
+          << ", 'Mesh/layers' = " << m.layers << ") has about " << estimate.unknowns << " unknowns and needs about "
+          << gigabytes(estimate.bytes) << " with 'Linear Solver/type' = '" << scene.linear_solver.type << "'; "
+          << gigabytes(estimate.available_bytes) << " available. ";
+  int fits = 0;
+  for (int r = 1; r < m.refinement_factor; ++r)
+    if (peak_bytes(scene, 3.0 * estimate.nodes_at(r)) <= usable * estimate.available_bytes) fits = r;
+  if (fits > 0) message << "Allowed here: 'Mesh/refinement factor' <= " << fits << "";
+  else message << "Use a coarser 'Mesh/level' or fewer 'Mesh/layers'";
+  if (scene.linear_solver.type == "mumps") {
+    const double iterative = MemoryModel::iterative(double(estimate.unknowns), scene.linear_solver.fill_level);
+    message << ", or the iterative solver 'Linear Solver/type' = 'gmres-ilu' (about " << gigabytes(iterative)
+            << (iterative <= usable * estimate.available_bytes ? ", fits" : ", does not fit either") << ")";
+  }
+  throw parameters::InputError(message.str());
+}
+
+mesh::HexMesh make_checked_mesh(const Scene& scene, const geometry::SpatulaShape& shape)
+{
+  mesh::HexMesh mesh;
+  try {
+    mesh = mesh::mesh_spatula(shape, scene.mesh);
+  } catch (const mesh::MeshingError& error) {
+    geometry_does_not_fit(scene, error.part, error.what());
+  }
+  if (const auto defect = mesh::find_defective_element(mesh)) {
+    std::ostringstream what;
+    what << defect->defective_elements << " inverted or degenerate element(s) at 'Mesh/level' = '" << scene.mesh.level
+         << "', the worst element " << defect->element << " (det J at a Gauss point " << defect->gauss_jacobian
+         << " nm^3, scaled Jacobian " << defect->scaled_jacobian << ", usable from " << mesh::smallest_scaled_jacobian
+         << ")";
+    geometry_does_not_fit(scene, defect->part, what.str());
+  }
+  return mesh;
+}
+
+void check_ranks(const mesh::HexMesh& mesh, const mesh::Partition& partition)
+{
+  for (int rank = 0; rank < partition.ranks; ++rank)
+    if (partition.elements_of(rank).empty())
+      throw parameters::InputError("MPI: " + std::to_string(partition.ranks) + " ranks for a mesh of " +
+                                   std::to_string(mesh.element_count()) + " elements leave rank " +
+                                   std::to_string(rank) + " without elements: run on fewer ranks");
+}
+
+}  // namespace spatula::app

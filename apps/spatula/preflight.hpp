@@ -1,0 +1,39 @@
+#pragma once
+// Everything about a run that can be checked without solving, checked before anything is computed or written
+// (and by --validate-only): the output directory, the memory the mesh and solver need, the mesh's elements, the
+// rank count against the mesh, the restart file. Each check throws parameters::InputError naming the key(s) to
+// change and why.
+#include "scene.hpp"
+
+#include "hex_mesh.hpp"
+#include "partition.hpp"
+
+#include <cstdint>
+#include <string>
+
+namespace spatula::app {
+
+// `scene_file` is the scene's own file (empty for the embedded scene): the run must not replace it either.
+void check_output_directory(const Scene& scene, const std::string& scene_file);
+
+struct MemoryEstimate {
+  std::int64_t nodes = 0, unknowns = 0, matrix_entries = 0;
+  double bytes = 0.0;             // peak of the whole run, all ranks together
+  double available_bytes = 0.0;   // MemAvailable of this machine (all ranks are taken to share it)
+  double fixed_nodes = 0.0, refined_nodes = 0.0;   // nodes at refinement factor r: fixed + refined r^2
+  double nodes_at(int r) const { return fixed_nodes + refined_nodes * r * r; }
+};
+// Estimated from the node counts of the scene's mesh at refinement factors 1 and 2 (cheap), extrapolated to the
+// requested refinement, so that a mesh too large for the machine is refused before it is made. The direct solver's share is calibrated on the fine
+// mesh's measured peak (docs/performance.md) and grown as unknowns^(4/3) (nested-dissection fill in 3D).
+MemoryEstimate estimate_memory(const Scene& scene, std::int64_t unrefined_nodes, std::int64_t refined_nodes);
+void check_memory(const Scene& scene, const MemoryEstimate& estimate);
+
+// Meshes the scene's spatula and checks every element (det J > 0 at its Gauss points, not degenerate); a geometry
+// that cannot be meshed is an InputError naming the part, the parameters that shape it and, for those the scene
+// moved from the paper's values, how far they may go with the others as given.
+mesh::HexMesh make_checked_mesh(const Scene& scene, const geometry::SpatulaShape& shape);
+// Every rank has elements to assemble.
+void check_ranks(const mesh::HexMesh& mesh, const mesh::Partition& partition);
+
+}  // namespace spatula::app
