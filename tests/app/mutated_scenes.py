@@ -11,6 +11,10 @@ mutated scene, `spatula <scene> --validate-only`, run in an empty working direct
   * print no crash text (uncaught exceptions, signals, MPI aborts, Teuchos stack traces),
   * write nothing into the working directory.
 
+A scene the program rejects as it is (e.g. one whose restart file is not in the empty directory) is skipped, with a
+note: it has no valid state to mutate. The mutated scene files lie in a temporary folder apart from the working
+directories; --keep-failures copies the failing ones, each headed by a comment naming its mutation.
+
 usage: mutated_scenes.py <spatula executable> <xml folder> [--cases N] [--seed S] [--jobs J] [--keep-failures DIR]
 Exit code 0 when every case passes, 1 otherwise.
 """
@@ -31,9 +35,11 @@ import time
 import xml.etree.ElementTree as ElementTree
 
 TIMEOUT_SECONDS = 20
+# As in validate_scene.sh: an MPI singleton that starts no orted (0.1 s less per run); the caller's setting wins.
+ENVIRONMENT = {"OMPI_MCA_ess_singleton_isolated": "1", **os.environ}
 HUGE_LENGTH = 100_000
 TYPES = ("double", "int", "bool", "string")
-OTHER_TYPES = ("Array(double)", "complex")   # a Teuchos type no key has, and no type at all
+OTHER_TYPES = ("Array(double)", "complex")   # a Teuchos type no key has; a type Teuchos does not know
 CRASH_TEXTS = ("terminate called", "segmentation", "aborted", "core dumped", "bad_alloc", "std::",
                "throw test that evaluated to true", "mpi_abort", "stack trace")
 INT_OVERFLOWS = ("2147483648", "4294967298", "-2147483649")
@@ -94,9 +100,10 @@ class Declarations:
             while stack[-1][0] >= indent:
                 stack.pop()
             if match:
-                value = {"1": "true", "0": "false"}.get(match["value"], match["value"]) if match["type"] == "bool" \
-                    else match["value"]
-                last_key = Key(join(stack[-1][1], match["name"]), match["type"], value)
+                default = match["value"]
+                if match["type"] == "bool":   # printed as 1 or 0
+                    default = {"1": "true", "0": "false"}.get(default, default)
+                last_key = Key(join(stack[-1][1], match["name"]), match["type"], default)
                 self.keys[last_key.path] = last_key
             else:
                 last_list = join(stack[-1][1], stripped[:-3])
@@ -113,7 +120,8 @@ class Declarations:
             key.lower_open, key.upper_open = match["open"] == "(", match["close"] == ")"
 
     def names_in(self, list_path):
-        return {path.rpartition("/")[2] for path in [*self.keys, *self.lists] if path and parent_of(path) == list_path}
+        """The names declared in a list, in a fixed order (the generated cases depend on it)."""
+        return [path.rpartition("/")[2] for path in [*self.keys, *self.lists] if path and parent_of(path) == list_path]
 
 
 def scene_entries(root):
@@ -255,7 +263,8 @@ def duplicate_sublist(random_generator, root, declarations):
 def unknown_key(random_generator, root, declarations):
     list_path = random_generator.choice([path for path in declarations.lists if path not in declarations.free_form])
     declared = declarations.names_in(list_path)
-    names = [name for name in INVENTED_NAMES + tuple(name.swapcase() for name in declared) if name not in declared]
+    near_misses = [variant for name in declared for variant in (name.swapcase(), name + " ")]
+    names = [name for name in [*INVENTED_NAMES, "", *near_misses] if name not in declared]
     name = random_generator.choice(names)
     parent = ensure_list(root, list_path)
     if random_generator.random() < 0.25:
@@ -312,26 +321,30 @@ def generate(count, seed, scenes, declarations):
     return cases
 
 
-def run_case(executable, case, scene_folder):
-    """The problems with the program's answer to one case (empty when it passes)."""
-    scene_file = pathlib.Path(scene_folder, f"case-{case.number:04d}.xml")
-    scene_file.write_text(case.xml)
+def run(executable, xml, scene_file):
+    """(exit code, stdout, stderr, files written) of `spatula <scene> --validate-only` in an empty directory."""
+    scene_file.write_text(xml)
     with tempfile.TemporaryDirectory(prefix="spatula-mutated-work-") as work:
         try:
             result = subprocess.run([executable, str(scene_file), "--validate-only"], cwd=work,
-                                    stdin=subprocess.DEVNULL, capture_output=True, timeout=TIMEOUT_SECONDS)
+                                    stdin=subprocess.DEVNULL, capture_output=True, timeout=TIMEOUT_SECONDS,
+                                    env=ENVIRONMENT)
             exit_code, output, errors = result.returncode, result.stdout, result.stderr
         except subprocess.TimeoutExpired as timeout:
             exit_code, output, errors = f"timeout after {TIMEOUT_SECONDS} s", timeout.stdout, timeout.stderr
         written = sorted(os.listdir(work))
-    output, errors = (text.decode(errors="replace") if text else "" for text in (output, errors))
+    return (exit_code, *(text.decode(errors="replace") if text else "" for text in (output, errors)), written)
+
+
+def check(case, exit_code, output, errors, written):
+    """What is wrong with the program's answer to a case (nothing when it passes)."""
     problems = [] if exit_code == 2 else [f"exit code {exit_code}"]
     if f"'{case.key}'" not in errors:
         problems.append("key not named")
     problems += [f"crash text {text!r}" for text in CRASH_TEXTS if text in (output + errors).lower()]
     if written:
         problems.append("wrote " + ", ".join(written[:5]))
-    return problems, exit_code, errors
+    return problems
 
 
 def main():
@@ -341,50 +354,58 @@ def main():
     parser.add_argument("--cases", type=int, default=400)
     parser.add_argument("--seed", type=int, default=20261202)
     parser.add_argument("--jobs", type=int, default=2)
-    parser.add_argument("--keep-failures", metavar="DIR")
+    parser.add_argument("--keep-failures", metavar="DIR", help="copy each failing mutated scene here")
     arguments = parser.parse_args()
-    arguments.executable = os.path.abspath(arguments.executable)   # the cases run in other directories
+    executable = os.path.abspath(arguments.executable)   # the cases run in other directories
     start = time.monotonic()
-
-    printed = subprocess.run([arguments.executable, "--print-parameters"], capture_output=True, text=True,
-                             timeout=TIMEOUT_SECONDS)
+    printed = subprocess.run([executable, "--print-parameters"], capture_output=True, text=True,
+                             timeout=TIMEOUT_SECONDS, env=ENVIRONMENT)
     declarations = Declarations(printed.stdout)
     if printed.returncode != 0 or not declarations.keys:
-        sys.exit(f"cannot read the declared parameters from '{arguments.executable} --print-parameters' "
+        sys.exit(f"cannot read the declared parameters from '{executable} --print-parameters' "
                  f"(exit code {printed.returncode}):\n{printed.stderr}")
     folder = pathlib.Path(arguments.xml_folder)
-    scenes = [(str(path.relative_to(folder)), path.read_text()) for path in sorted(folder.rglob("*.xml"))]
-    if not scenes:
-        sys.exit(f"no scenes in {folder}")
-    cases = generate(arguments.cases, arguments.seed, scenes, declarations)
-    print(f"{len(cases)} mutated scenes from {len(scenes)} scenes, {len(declarations.keys)} declared keys, "
-          f"seed {arguments.seed}, {arguments.jobs} jobs")
+    scenes = [(str(path.relative_to(folder)), ElementTree.tostring(ElementTree.parse(path).getroot(), "unicode"))
+              for path in sorted(folder.rglob("*.xml"))]
 
     tally = collections.defaultdict(lambda: [0, 0])
-    failures = 0
     with tempfile.TemporaryDirectory(prefix="spatula-mutated-scenes-") as scene_folder, \
             concurrent.futures.ThreadPoolExecutor(arguments.jobs) as pool:
-        results = pool.map(lambda case: run_case(arguments.executable, case, scene_folder), cases)
-        for case, (problems, exit_code, errors) in zip(cases, results):
+        # The property needs valid scenes: one that the program rejects as it is has nothing to mutate.
+        answers = pool.map(lambda numbered: run(executable, numbered[1][1], pathlib.Path(
+            scene_folder, f"scene-{numbered[0]}.xml")), enumerate(scenes))
+        valid = []
+        for scene, (exit_code, _, errors, written) in zip(scenes, answers):
+            if exit_code == 0 and not written:
+                valid.append(scene)
+            else:
+                print(f"skipped {scene[0]}: not valid in an empty directory: {' '.join(errors[:200].split())}")
+        if not valid:
+            sys.exit(f"no valid scenes in {folder}")
+        cases = generate(arguments.cases, arguments.seed, valid, declarations)
+        print(f"{len(cases)} mutated scenes from {len(valid)} scenes, {len(declarations.keys)} declared keys, "
+              f"seed {arguments.seed}, {arguments.jobs} jobs")
+        answers = pool.map(lambda case: run(executable, case.xml, pathlib.Path(
+            scene_folder, f"case-{case.number:04d}.xml")), cases)
+        for case, (exit_code, output, errors, written) in zip(cases, answers):
+            problems = check(case, exit_code, output, errors, written)
             tally[case.kind][0] += 1
+            tally[case.kind][1] += bool(problems)
             if not problems:
                 continue
-            tally[case.kind][1] += 1
-            failures += 1
-            stderr = " ".join(errors[:300].split())
             print(f"FAIL #{case.number} {case.scene} {case.kind} '{case.key}' ({case.detail}): "
-                  f"{'; '.join(problems)}; exit code {exit_code}; stderr: {stderr}")
+                  f"{'; '.join(problems)}; exit code {exit_code}; stderr: {' '.join(errors[:300].split())}")
             if arguments.keep_failures:
                 kept = pathlib.Path(arguments.keep_failures, f"{case.number:04d}-{case.kind}.xml")
                 kept.parent.mkdir(parents=True, exist_ok=True)
                 note = f"{case.scene}, {case.kind} '{case.key}': {case.detail}: {'; '.join(problems)}"
                 kept.write_text(f"<!-- {note.replace('--', '- -')} -->\n{case.xml}\n")
 
+    failures = sum(failed for _, failed in tally.values())
     print(f"\n{'mutation':<20}{'cases':>7}{'failures':>10}")
     for kind in MUTATIONS:
         print(f"{kind:<20}{tally[kind][0]:>7}{tally[kind][1]:>10}")
-    print(f"{'total':<20}{len(cases):>7}{failures:>10}")
-    print(f"time {time.monotonic() - start:.1f} s")
+    print(f"{'total':<20}{len(cases):>7}{failures:>10}\ntime {time.monotonic() - start:.1f} s")
     return 1 if failures else 0
 
 

@@ -48,7 +48,7 @@ rotation_scene second 20 '' '<Parameter name="restart file" type="string" value=
 "$app" continuous.xml > continuous.log
 "$app" first.xml > first.log
 "$app" second.xml > second.log
-grep -q "restart from theta_y=12" second.log
+grep -q "restart from 'theta_y=12'" second.log
 /usr/bin/python3 - <<'PY'
 import csv
 a = list(csv.DictReader(open('continuous/curve.csv')))[-1]

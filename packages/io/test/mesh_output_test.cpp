@@ -104,3 +104,38 @@ TEST(OutputDirectory, CommitReplacesAbandonLeavesNothingThatLooksComplete)
   EXPECT_TRUE(fs::exists(path.string() + ".incomplete"));
   EXPECT_FALSE(fs::exists(path.string() + ".partial"));
 }
+
+TEST(OutputDirectory, RefusesWhatItDidNotWriteAndWhatHoldsTheWorkingDirectory)
+{
+  const auto base = scratch("refusals");
+  fs::create_directories(base / "user");
+  std::ofstream(base / "user" / "data.txt") << "the user's";
+  std::ofstream(base / "file") << "the user's";
+  const auto working = fs::current_path();
+  fs::current_path(base);
+  EXPECT_TRUE(io::OutputDirectory::refusal(".", true));
+  EXPECT_TRUE(io::OutputDirectory::refusal("./", true));
+  EXPECT_TRUE(io::OutputDirectory::refusal("..", true));
+  EXPECT_TRUE(io::OutputDirectory::refusal("/", true));
+  EXPECT_TRUE(io::OutputDirectory::refusal("", true));
+  EXPECT_TRUE(io::OutputDirectory::refusal("user", true));
+  EXPECT_TRUE(io::OutputDirectory::refusal("file", true));
+  EXPECT_TRUE(io::OutputDirectory::refusal(std::string(256, 'x'), true));
+  EXPECT_FALSE(io::OutputDirectory::refusal("new/deeper", true));
+  EXPECT_FALSE(fs::exists("new"));   // refusal looks, it creates nothing
+  {
+    io::OutputDirectory ours("ours/");   // a trailing separator names the same directory
+    EXPECT_TRUE(fs::exists("ours.partial/.spatula-output"));
+    ours.commit();
+  }
+  EXPECT_TRUE(fs::exists(fs::path("ours") / io::OutputDirectory::marker_name));
+  EXPECT_FALSE(io::OutputDirectory::refusal("ours", true));   // an earlier result of ours may be replaced
+  EXPECT_TRUE(io::OutputDirectory::refusal("ours", false));   // unless overwriting is off
+  EXPECT_TRUE(io::OutputDirectory::would_replace("ours", "ours/scene.xml"));
+  EXPECT_TRUE(io::OutputDirectory::would_replace("ours", "ours.incomplete/checkpoints.h5"));
+  EXPECT_FALSE(io::OutputDirectory::would_replace("ours", "ours-too/checkpoints.h5"));
+  EXPECT_THROW(io::OutputDirectory("user"), std::runtime_error);
+  fs::current_path(working);
+  EXPECT_EQ(read(base / "user" / "data.txt"), "the user's");
+  EXPECT_EQ(read(base / "file"), "the user's");
+}

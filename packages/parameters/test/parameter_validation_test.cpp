@@ -107,6 +107,49 @@ TEST(ParameterValidation, MalformedXmlAndUnparsableNumbers)
                   "'Geometry/l_p': value 'abc' is not a valid double");
 }
 
+TEST(ParameterValidation, RepeatedKeysAndSublistsAreErrorsNotOverrides)
+{
+  expect_contains(error_of(R"(<ParameterList><ParameterList name="Geometry">
+      <Parameter name="l_p" type="double" value="300"/>
+      <Parameter name="l_p" type="double" value="200"/></ParameterList></ParameterList>)"),
+                  "parameter 'Geometry/l_p' is given twice (lines 2, 3)");
+  expect_contains(error_of(R"(<ParameterList><ParameterList name="Mesh"></ParameterList>
+      <ParameterList name="Mesh"></ParameterList></ParameterList>)"),
+                  "sublist 'Mesh' is given twice");
+}
+
+TEST(ParameterValidation, IntegersBeyondIntAreNotWrapped)
+{
+  auto mesh = [](const std::string& value) {
+    return error_of(R"(<ParameterList><ParameterList name="Mesh"><Parameter name="refinement factor" type="int" value=")" +
+                    value + R"("/></ParameterList></ParameterList>)");
+  };
+  expect_contains(mesh("4294967298"), "'Mesh/refinement factor': value '4294967298' is outside the range of int");
+  expect_contains(mesh("2147483648"), "is outside the range of int");
+  expect_contains(mesh("-2147483649"), "is outside the range of int");
+  expect_contains(mesh("2147483647"), "'Mesh/refinement factor' = 2147483647 is out of range");   // an int, too big
+  expect_contains(mesh("1.5"), "is not a valid int");
+}
+
+TEST(ParameterValidation, MissingValuesAndNonFiniteNumbersNameTheKey)
+{
+  auto geometry = [](const std::string& attributes) {
+    return error_of(R"(<ParameterList><ParameterList name="Geometry"><Parameter name="l_p" )" + attributes +
+                    R"(/></ParameterList></ParameterList>)");
+  };
+  expect_contains(geometry(R"(type="double")"), "parameter 'Geometry/l_p' has no value attribute");
+  expect_contains(geometry(R"(value="3")"), "parameter 'Geometry/l_p' has no type attribute");
+  for (const char* value : {"nan", "NaN", "inf", "-inf"})
+    expect_contains(geometry(std::string(R"(type="double" value=")") + value + "\""), "is not a finite number");
+  expect_contains(geometry(R"(type="double" value="1e999")"), "'Geometry/l_p': value '1e999' is not a valid double");
+  expect_contains(geometry(R"(type="double" value="")"), "'Geometry/l_p': value '' is not a valid double");
+  const std::string huge(100000, 'x');
+  const auto message = error_of(R"(<ParameterList><ParameterList name="Mesh"><Parameter name="level" type="string" value=")" +
+                                huge + R"("/></ParameterList></ParameterList>)");
+  expect_contains(message, "'Mesh/level' = 'xxx");
+  EXPECT_LT(message.size(), 400u);   // the value is shortened in the message
+}
+
 TEST(ParameterValidation, MissingFileIsNamed)
 {
   try {
