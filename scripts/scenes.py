@@ -19,7 +19,8 @@ def parameter_list(name, entries, indent=0):
 
 
 def benchmark_scene(name, *, mesh='coarse', refinement=1, adhesion=None, loading='lift', theta_y=60.0,
-                    final_lift=600.0, rotation_maximum=2.0, lift_maximum=5.0, linear_solver=None, fields=-1):
+                    final_lift=600.0, rotation_maximum=2.0, lift_maximum=5.0, linear_solver=None, newton=None,
+                    fields=-1):
     """A frictionless scene on a flat substrate unless `adhesion` (the Adhesion list's entries) says otherwise:
     rotation to theta_y with zero net force, then (loading 'lift') a lift of final_lift nm beyond the rotated state.
     Step maxima in deg and nm, minima 0.01. fields: -1 writes no fields, 0 the first and last states only, n every
@@ -34,6 +35,7 @@ def benchmark_scene(name, *, mesh='coarse', refinement=1, adhesion=None, loading
         'Adhesion': {'law': 'frictionless', **(adhesion or {})},
         'Loading': {**load, **steps},
         **({'Linear Solver': linear_solver} if linear_solver else {}),
+        **({'Nonlinear Solver': newton} if newton else {}),
         'Output': {'directory': name, 'write mesh': fields >= 0, 'field interval': max(fields, 0)},
     }
     return parameter_list(name, entries) + '\n'

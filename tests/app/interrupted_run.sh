@@ -14,7 +14,7 @@ source "$here/rotation_scene.sh"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
-export OMPI_MCA_ess_singleton_isolated=1 OPENBLAS_NUM_THREADS=1
+export OPENBLAS_NUM_THREADS=1
 failures=0
 fail() { echo "FAIL $*"; failures=$((failures + 1)); }
 wait_for_step() {   # log file, step number: waits until the log shows that converged step (at most 120 s)

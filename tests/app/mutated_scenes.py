@@ -35,8 +35,9 @@ import time
 import xml.etree.ElementTree as ElementTree
 
 TIMEOUT_SECONDS = 20
-# As in validate_scene.sh: an MPI singleton that starts no orted (0.1 s less per run); the caller's setting wins.
-ENVIRONMENT = {"OMPI_MCA_ess_singleton_isolated": "1", **os.environ}
+# A single-process MPI start without the helper daemon and network transports: 0.13 s a run instead of 0.4. Each
+# run gets its own session folder (isolated singletons sharing one race on it), outside the working directory.
+FAST_SINGLETON = {"OMPI_MCA_ess_singleton_isolated": "1", "OMPI_MCA_btl": "self", "OMPI_MCA_pml": "ob1"}
 HUGE_LENGTH = 100_000
 TYPES = ("double", "int", "bool", "string")
 OTHER_TYPES = ("Array(double)", "complex")   # a Teuchos type no key has; a type Teuchos does not know
@@ -289,7 +290,7 @@ def wrong_sublist(random_generator, root, declarations):
         if random_generator.random() < 0.5:
             replacement.append(copy.deepcopy(element))
         parent[list(parent).index(element)] = replacement
-        return key.path, f"sublist where a {key.type} is declared"
+        return key.path, f"sublist where a value ({key.type}) is declared"
     targets = [path for path in declarations.lists if path != key.list_path and path not in declarations.free_form
                and key.name not in declarations.names_in(path)]
     target = random_generator.choice(targets)
@@ -324,14 +325,17 @@ def generate(count, seed, scenes, declarations):
 def run(executable, xml, scene_file):
     """(exit code, stdout, stderr, files written) of `spatula <scene> --validate-only` in an empty directory."""
     scene_file.write_text(xml)
-    with tempfile.TemporaryDirectory(prefix="spatula-mutated-work-") as work:
+    with tempfile.TemporaryDirectory(prefix="spatula-mutated-work-") as work, \
+            tempfile.TemporaryDirectory(prefix="spatula-mutated-mpi-") as session:
+        environment = {**os.environ, **FAST_SINGLETON, "OMPI_MCA_orte_tmpdir_base": session}
         try:
-            result = subprocess.run([executable, str(scene_file), "--validate-only"], cwd=work,
-                                    stdin=subprocess.DEVNULL, capture_output=True, timeout=TIMEOUT_SECONDS,
-                                    env=ENVIRONMENT)
+            result = subprocess.run([executable, str(scene_file), "--validate-only"], cwd=work, env=environment,
+                                    stdin=subprocess.DEVNULL, capture_output=True, timeout=TIMEOUT_SECONDS)
             exit_code, output, errors = result.returncode, result.stdout, result.stderr
         except subprocess.TimeoutExpired as timeout:
             exit_code, output, errors = f"timeout after {TIMEOUT_SECONDS} s", timeout.stdout, timeout.stderr
+        except OSError as error:   # e.g. the program is being rebuilt
+            exit_code, output, errors = f"cannot run: {error}", b"", b""
         written = sorted(os.listdir(work))
     return (exit_code, *(text.decode(errors="replace") if text else "" for text in (output, errors)), written)
 
@@ -359,7 +363,7 @@ def main():
     executable = os.path.abspath(arguments.executable)   # the cases run in other directories
     start = time.monotonic()
     printed = subprocess.run([executable, "--print-parameters"], capture_output=True, text=True,
-                             timeout=TIMEOUT_SECONDS, env=ENVIRONMENT)
+                             timeout=TIMEOUT_SECONDS)
     declarations = Declarations(printed.stdout)
     if printed.returncode != 0 or not declarations.keys:
         sys.exit(f"cannot read the declared parameters from '{executable} --print-parameters' "

@@ -10,7 +10,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
 status=0
-OMPI_MCA_ess_singleton_isolated=1 "$app" "$scene" --validate-only > stdout.txt 2> stderr.txt || status=$?
+OMPI_MCA_btl=self OMPI_MCA_pml=ob1 "$app" "$scene" --validate-only > stdout.txt 2> stderr.txt || status=$?
 restart=$(sed -n 's/.*name="restart file" type="string" value="\([^"]\+\)".*/\1/p' "$scene")
 if [ -n "$restart" ]; then
   expected="parameter 'Loading/restart file' = '$restart': no such file"

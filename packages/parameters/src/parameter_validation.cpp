@@ -252,7 +252,7 @@ std::string lines_naming(const std::string& text, const std::string& name)
     const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n');
     lines += (count++ == 0 ? "" : ", ") + std::to_string(line);
   }
-  return count > 1 ? " (lines " + lines + ")" : "";
+  return count == 2 ? " (lines " + lines + ")" : "";   // more: the name is also used elsewhere, lines would mislead
 }
 
 bool is_number(const std::string& value, double& number)
@@ -311,6 +311,9 @@ void check_tree(const Teuchos::XMLObject& node, const std::string& path, const s
     }
     if (!child.hasAttribute("type")) throw InputError("parameter '" + key + "' has no type attribute");
     if (!child.hasAttribute("value")) throw InputError("parameter '" + key + "' has no value attribute");
+    const std::string type = child.getAttribute("type");
+    if (type != "double" && type != "int" && type != "bool" && type != "string")
+      throw InputError("parameter '" + key + "': type '" + shorten(type) + "' is not one of double, int, bool, string");
     check_literal(key, child.getAttribute("type"), child.getAttribute("value"));
   }
 }

@@ -23,6 +23,7 @@ struct MumpsParameters {
   bool symmetric = true;        // LDL^T (SYM = 2); false: LU (SYM = 0)
   int memory_relaxation = 40;   // ICNTL(14), per cent
   bool verbose = false;         // MUMPS' own statistics on standard output
+  bool keep_workspace = true;   // freed memory stays in the process for the next factorization (mallopt)
   static void declare(Teuchos::ParameterList& list);
   static MumpsParameters from(const Teuchos::ParameterList& list);
 };

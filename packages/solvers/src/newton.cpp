@@ -11,6 +11,7 @@
 #include <NOX_StatusTest_MaxIters.H>
 #include <NOX_StatusTest_NormF.H>
 #include <NOX_StatusTest_NormUpdate.H>
+#include <NOX_StatusTest_Stagnation.H>
 #include <NOX_Thyra_Group.H>
 #include <NOX_Thyra_Vector.H>
 #include <Teuchos_TimeMonitor.hpp>
@@ -38,11 +39,24 @@ void NewtonParameters::declare(Teuchos::ParameterList& list)
   using parameters::Range;
   parameters::declare_double(list, "relative tolerance", 1e-9, "|f| relative to its value at the step start",
                              {0.0, 1.0, false, true});
-  parameters::declare_double(list, "absolute tolerance", 1e-9, "|f|_2 [nN]", Range::non_negative());
-  parameters::declare_double(list, "update tolerance", 1e-6, "|dx|_inf [nm, rad]", Range::positive());
+  parameters::declare_double(list, "absolute tolerance", 1e-9, "|f|_2 [nN] (over sqrt(n) with norms = scaled)",
+                             Range::non_negative());
+  parameters::declare_double(list, "update tolerance", 1e-6, "|dx|_inf [nm, rad] (over n with norms = scaled)",
+                             Range::positive());
   parameters::declare_int(list, "maximum iterations", 12, "Newton iterations per load step (fail fast, cut the step)",
                           Range::closed(1, 500));
   parameters::declare_string(list, "line search", "backtrack", "step length control", line_search_names());
+  parameters::declare_int(list, "non-contracting iterations", 0,
+                          "give up on a load step after this many consecutive iterations that did not shrink |f| "
+                          "below 'contraction' times its value before (0: only 'maximum iterations' ends a step)",
+                          Range::closed(0, 500));
+  parameters::declare_double(list, "contraction", 1.0,
+                             "|f_k| / |f_k-1| at or above which an iteration counts as non-contracting",
+                             {0.0, 10.0, true, false});
+  parameters::declare_string(list, "norms", "scaled",
+                             "how the absolute and update tolerances are applied: scaled (NOX's default, as every "
+                             "recorded result ran) |f|_2 / sqrt(n) and |dx|_inf / n with n unknowns; unscaled: |f|_2 "
+                             "and |dx|_inf themselves", {"scaled", "unscaled"});
 }
 
 NewtonParameters NewtonParameters::from(const Teuchos::ParameterList& list)
@@ -53,6 +67,9 @@ NewtonParameters NewtonParameters::from(const Teuchos::ParameterList& list)
   p.update_tolerance = list.get<double>("update tolerance");
   p.maximum_iterations = list.get<int>("maximum iterations");
   p.line_search = list.get<std::string>("line search");
+  p.scaled_norms = list.get<std::string>("norms") == "scaled";
+  p.non_contracting_iterations = list.get<int>("non-contracting iterations");
+  p.contraction = list.get<double>("contraction");
   return p;
 }
 
@@ -121,16 +138,20 @@ NewtonResult NewtonSolver::solve(discretization::Vector& x, std::ostream* table)
   auto group = Teuchos::rcp(new NOX::Thyra::Group(initial_guess, model_));
 
   using namespace NOX::StatusTest;
-  auto absolute = Teuchos::rcp(new NormF(parameters_.absolute_tolerance));
+  const auto scale = parameters_.scaled_norms ? NormF::Scaled : NormF::Unscaled;
+  auto absolute = Teuchos::rcp(new NormF(parameters_.absolute_tolerance, scale));
   group->computeF();
-  auto relative = Teuchos::rcp(new NormF(*group, parameters_.relative_tolerance));
+  auto relative = Teuchos::rcp(new NormF(*group, parameters_.relative_tolerance, scale));
   auto residual = Teuchos::rcp(new Combo(Combo::OR, absolute, relative));
-  auto update = Teuchos::rcp(new NormUpdate(parameters_.update_tolerance, NOX::Abstract::Vector::MaxNorm));
+  auto update = Teuchos::rcp(new NormUpdate(parameters_.update_tolerance, NOX::Abstract::Vector::MaxNorm,
+                                            parameters_.scaled_norms ? NormUpdate::Scaled : NormUpdate::Unscaled));
   auto converged = Teuchos::rcp(new Combo(Combo::AND, residual, update));
   auto tests = Teuchos::rcp(new Combo(Combo::OR));
   tests->addStatusTest(converged);
   tests->addStatusTest(Teuchos::rcp(new MaxIters(parameters_.maximum_iterations)));
   tests->addStatusTest(Teuchos::rcp(new FiniteValue));
+  if (parameters_.non_contracting_iterations > 0)   // far from a solution (past a fold): give up early
+    tests->addStatusTest(Teuchos::rcp(new Stagnation(parameters_.non_contracting_iterations, parameters_.contraction)));
 
   auto list = Teuchos::rcp(new Teuchos::ParameterList("NOX"));
   list->set("Nonlinear Solver", "Line Search Based");
@@ -163,8 +184,11 @@ NewtonResult NewtonSolver::solve(discretization::Vector& x, std::ostream* table)
   }
   if (status != NOX::StatusTest::Converged) {
     const auto& final_group = solver->getSolutionGroup();
-    result.failure = "no convergence after " + std::to_string(solver->getNumIterations()) +
-                     " iterations (|f| = " + std::to_string(final_group.getNormF()) + " nN" +
+    const bool stagnated = status == NOX::StatusTest::Failed && parameters_.non_contracting_iterations > 0 &&
+                           solver->getNumIterations() < parameters_.maximum_iterations;
+    result.failure = "no convergence after " + std::to_string(solver->getNumIterations()) + " iterations (" +
+                     (stagnated ? "|f| stopped shrinking, " : "") + "|f| = " + std::to_string(final_group.getNormF()) +
+                     " nN" +
                      (model_->last_evaluation().admissible ? "" : ", an element inverted") + ")";
     return result;
   }

@@ -1,0 +1,100 @@
+#!/usr/bin/env python3
+"""Newton's give-up rule and convergence norms on whole pull-offs, old against new in one run (issue 15, parts 0-1a).
+
+Each configuration is the coarse frictionless Q1C2 pull-off (rotation to theta_y with zero net force, then a lift of
+600 nm beyond it) with one Nonlinear Solver setting changed from the base (the defaults as they were: a load step
+fails only after 'maximum iterations' = 12; NOX's scaled norms):
+  non-contracting 2 / 3   give up after 2 or 3 iterations in a row that did not shrink |f|
+  unscaled                |f|_2 <= 1e-9 nN and |dx|_inf <= 1e-6 nm as written (docs/solvers.md)
+It records CPU seconds, tangents, Newton iterations, failed step attempts, and the change of P_max, Delta u_z and
+Delta Pi_ext against the base. Runs one after another (a quiet machine: CPU times are compared):
+
+    benchmarks/step_control.py [--theta 45] [--mesh coarse] [--work step-control] [--docs]
+
+--docs writes docs/step-control.csv and prints the table for docs/performance.md.
+"""
+import argparse
+import csv
+import os
+import re
+import resource
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, 'scripts'))
+from curves import pull_off_summary  # noqa: E402
+from scenes import benchmark_scene  # noqa: E402
+
+APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula'))
+CONFIGURATIONS = {
+    'base': {},
+    'non-contracting-3': {'non-contracting iterations': 3},
+    'non-contracting-2': {'non-contracting iterations': 2},
+    'unscaled': {'norms': 'unscaled'},
+}
+QUANTITIES = ('P_max_nN', 'delta_u_z_nm', 'delta_Pi_ext_1e-18J')
+
+
+def measure(work, label, newton, mesh, theta):
+    directory = f'{mesh}-{theta:g}-{label}'
+    xml = os.path.join(work, directory + '.xml')
+    open(xml, 'w').write(benchmark_scene(directory, mesh=mesh, theta_y=float(theta), newton=newton or None))
+    environment = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    started = time.time()
+    with open(os.path.join(work, directory + '.log'), 'w') as log:
+        status = subprocess.call([APP, xml], cwd=work, stdout=log, stderr=subprocess.STDOUT, env=environment)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    text = open(os.path.join(work, directory + '.log')).read()
+    row = dict(configuration=label, status=status, wall_s=round(time.time() - started, 1),
+               cpu_s=round(after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime, 1))
+    solver = re.search(r'^solver: (\d+) tangents, (\d+) residual-only evaluations.*?(\d+) factorizations', text, re.M)
+    row['tangents'] = int(solver.group(1)) if solver else -1
+    row['residuals'] = int(solver.group(2)) if solver else -1
+    row['factorizations'] = int(solver.group(3)) if solver else -1
+    row['failed_attempts'] = len(re.findall(r'failed \(|converged on another branch', text))
+    row['jumps'] = len(re.findall(r'^  jumped in', text, re.M))
+    if status == 0:
+        summary = pull_off_summary(work, directory)
+        for q in QUANTITIES:
+            row[q] = summary[q]
+        row['worst_balance'] = summary['worst_balance_error']
+    return row
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument('--theta', type=float, default=45.0)
+    parser.add_argument('--mesh', default='coarse')
+    parser.add_argument('--only', nargs='*', default=list(CONFIGURATIONS))
+    parser.add_argument('--work', default='step-control')
+    parser.add_argument('--docs', action='store_true')
+    arguments = parser.parse_args()
+    work = os.path.abspath(arguments.work)
+    os.makedirs(work, exist_ok=True)
+    rows = []
+    for label in arguments.only:
+        rows.append(measure(work, label, CONFIGURATIONS[label], arguments.mesh, arguments.theta))
+        print(rows[-1], flush=True)
+    base = rows[0]
+    print('\n| configuration | CPU [s] | tangents | residual-only | factorizations | failed step attempts | jumps | '
+          'P_max [nN] | change of P_max / Δu_z / ΔΠ_ext [%] |')
+    print('|---|---|---|---|---|---|---|---|---|')
+    for r in rows:
+        if r['status'] != 0:
+            print(f"| {r['configuration']} | exit {r['status']} | | | | | | | |")
+            continue
+        change = ' / '.join(f"{100 * (r[q] / base[q] - 1):+.3f}" for q in QUANTITIES)
+        print(f"| {r['configuration']} | {r['cpu_s']:.0f} ({r['cpu_s'] / base['cpu_s']:.2f}) | {r['tangents']} | "
+              f"{r['residuals']} | {r['factorizations']} | {r['failed_attempts']} | {r['jumps']} | {r['P_max_nN']:.4f} | {change} |")
+    if arguments.docs:
+        with open(os.path.join(ROOT, 'docs', 'step-control.csv'), 'w', newline='') as out:
+            writer = csv.DictWriter(out, fieldnames=list(dict.fromkeys(k for r in rows for k in r)))
+            writer.writeheader()
+            writer.writerows(rows)
+
+
+if __name__ == '__main__':
+    main()
