@@ -2,9 +2,10 @@
 """Newton's give-up rule and convergence norms on whole pull-offs, old against new in one run (issue 15, parts 0-1a).
 
 Each configuration is the coarse frictionless Q1C2 pull-off (rotation to theta_y with zero net force, then a lift of
-600 nm beyond it) with one Nonlinear Solver setting changed from the base (the defaults as they were: a load step
-fails only after 'maximum iterations' = 12; NOX's scaled norms):
+600 nm beyond it) with one Nonlinear Solver setting changed from the base (the rule as it was: a load step fails only
+after 'maximum iterations' = 12; NOX's scaled norms):
   non-contracting 2 / 3   give up after 2 or 3 iterations in a row that did not shrink |f|
+  slow 3-0.9 / 2-0.5      ... that shrank |f| by less than 10 % (3 in a row) or 50 % (2 in a row)
   unscaled                |f|_2 <= 1e-9 nN and |dx|_inf <= 1e-6 nm as written (docs/solvers.md)
 It records CPU seconds, tangents, Newton iterations, failed step attempts, and the change of P_max, Delta u_z and
 Delta Pi_ext against the base. Runs one after another (a quiet machine: CPU times are compared):
@@ -29,10 +30,12 @@ from scenes import benchmark_scene  # noqa: E402
 
 APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula'))
 CONFIGURATIONS = {
-    'base': {},
-    'non-contracting-3': {'non-contracting iterations': 3},
-    'non-contracting-2': {'non-contracting iterations': 2},
-    'unscaled': {'norms': 'unscaled'},
+    'base': {'non-contracting iterations': 0},   # the rule before issue 15: only 'maximum iterations' ends a step
+    'non-contracting-3': {'non-contracting iterations': 3, 'contraction': 1.0},
+    'non-contracting-2': {'non-contracting iterations': 2, 'contraction': 1.0},
+    'slow-3-0.9': {'non-contracting iterations': 3, 'contraction': 0.9},
+    'slow-2-0.5': {'non-contracting iterations': 2, 'contraction': 0.5},   # the default now
+    'unscaled': {'non-contracting iterations': 0, 'norms': 'unscaled'},
 }
 QUANTITIES = ('P_max_nN', 'delta_u_z_nm', 'delta_Pi_ext_1e-18J')
 
