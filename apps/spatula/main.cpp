@@ -75,6 +75,55 @@ void write_summary_files(const spatula::io::OutputDirectory& directory, const sp
   csv << "r5_nm," << shape.r5() << "\ntheta_s_deg," << shape.theta_s() * 180.0 / pi << "\n";
 }
 
+// A scene with everything checked that can be checked without solving, and its mesh.
+struct Checked {
+  std::optional<spatula::app::Scene> scene;
+  std::optional<spatula::geometry::SpatulaShape> shape;
+  spatula::mesh::HexMesh mesh;
+  spatula::mesh::Partition partition;
+  spatula::app::MemoryEstimate memory;
+};
+
+// Reads and checks the scene, the output directory, the mesh against the memory and the ranks, the restart file:
+// before anything is written, each check ending on every rank together (an InputError on all if one fails).
+Checked check_everything(const Options& options, const Teuchos::Comm<int>& comm)
+{
+  using namespace spatula;
+  Checked run;
+  app::agree(comm, [&] {
+    const auto user = options.scene_file.empty()
+                          ? parameters::read_xml_string(app::default_scene_xml, "the embedded default scene")
+                          : parameters::read_xml_file(options.scene_file);
+    run.scene = app::read_scene(user);
+    run.shape.emplace(run.scene->geometry);
+  });
+  app::agree(comm, [&] { app::check_output_directory(*run.scene, options.scene_file); }, true);
+  app::agree(comm, [&] {
+    Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: mesh"));
+    run.mesh = app::make_mesh_within_memory(*run.scene, *run.shape, run.memory);
+    run.partition = mesh::partition_mesh(run.mesh, comm.getSize());
+    app::check_ranks(run.mesh, run.partition);
+  });
+  app::agree(comm, [&] {
+    if (run.scene->loading.restart_file.empty()) return;
+    const auto enrichment = run.scene->adhesion.enabled ? run.scene->adhesion.settings.enrichment
+                                                        : discretization::Enrichment::q1c1;
+    app::check_checkpoint(*run.scene, discretization::make_node_space(run.mesh, run.partition, enrichment));
+  });
+  return run;
+}
+
+void print_summary(std::ostream& out, const Checked& run, const spatula::mesh::MeshSummary& summary)
+{
+  spatula::mesh::print(out, summary);
+  out << "  r5 [nm]                             " << run.shape->r5() << "\n"
+      << "  theta_s [deg]                       " << run.shape->theta_s() * 180.0 / pi << "\n"
+      << "  partition                           " << run.partition.ranks << " rank(s), elements per rank:";
+  for (int r = 0; r < run.partition.ranks; ++r) out << " " << run.partition.elements_of(r).size();
+  out << "\n  memory estimate                     " << run.memory.bytes / 1e9 << " GB of "
+      << run.memory.available_bytes / 1e9 << " GB available\n";
+}
+
 // What a stopped run leaves beside its partial results: why it stopped and how to go on.
 void write_failure_note(const spatula::io::OutputDirectory& directory, const spatula::app::Stop& stop, int exit_code)
 {
@@ -114,70 +163,26 @@ int main(int argc, char** argv)
       if (root) app::valid_scene_parameters().print(out, Teuchos::ParameterList::PrintOptions().showDoc(true).indent(2).showTypes(true));
       return 0;
     }
-    // Every check that can be made without solving, before anything is written; each ends on every rank together.
-    std::optional<app::Scene> scene;
-    std::optional<geometry::SpatulaShape> shape;
-    app::agree(*comm, [&] {
-      const auto user = options.scene_file.empty()
-                            ? parameters::read_xml_string(app::default_scene_xml, "the embedded default scene")
-                            : parameters::read_xml_file(options.scene_file);
-      scene = app::read_scene(user);
-      shape.emplace(scene->geometry);
-    });
-    app::agree(*comm, [&] { app::check_output_directory(*scene, options.scene_file); }, true);
-    // The mesh at refinement factors 1 and 2 first: checked, and the measure of what the requested one will need.
-    app::MemoryEstimate memory;
-    mesh::HexMesh mesh;
-    mesh::Partition partition;
-    app::agree(*comm, [&] {
-      Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: mesh"));
-      auto trial = *scene;
-      const int requested = scene->mesh.refinement_factor;
-      trial.mesh.refinement_factor = 1;
-      mesh = app::make_checked_mesh(trial, *shape);
-      const std::int64_t unrefined_nodes = mesh.node_count();
-      if (requested > 1) {
-        trial.mesh.refinement_factor = 2;
-        mesh = app::make_checked_mesh(trial, *shape);
-      }
-      memory = app::estimate_memory(*scene, unrefined_nodes, requested > 1 ? mesh.node_count() : 4 * unrefined_nodes);
-      app::check_memory(*scene, memory);
-      if (requested > 2) mesh = app::make_checked_mesh(*scene, *shape);
-      partition = mesh::partition_mesh(mesh, comm->getSize());
-      app::check_ranks(mesh, partition);
-    });
-    app::agree(*comm, [&] {
-      if (scene->loading.restart_file.empty()) return;
-      const auto enrichment = scene->adhesion.enabled ? scene->adhesion.settings.enrichment
-                                                      : discretization::Enrichment::q1c1;
-      app::check_checkpoint(*scene, discretization::make_node_space(mesh, partition, enrichment));
-    });
-
-    const auto summary = mesh::summarize(mesh, scene->mesh.level);
-    if (root) {
-      mesh::print(out, summary);
-      out << "  r5 [nm]                             " << shape->r5() << "\n"
-          << "  theta_s [deg]                       " << shape->theta_s() * 180.0 / pi << "\n"
-          << "  partition                           " << partition.ranks << " rank(s), elements per rank:";
-      for (int r = 0; r < partition.ranks; ++r) out << " " << partition.elements_of(r).size();
-      out << "\n  memory estimate                     " << memory.bytes / 1e9 << " GB of "
-          << memory.available_bytes / 1e9 << " GB available\n";
-    }
+    const Checked run = check_everything(options, *comm);
+    const auto summary = mesh::summarize(run.mesh, run.scene->mesh.level);
+    if (root) print_summary(out, run, summary);
     if (options.validate_only) {
       if (root) out << "spatula: scene " << (options.scene_file.empty() ? "<default>" : options.scene_file) << " is valid\n";
       return 0;
     }
 
+    const auto& scene = *run.scene;
     app::agree(*comm, [&] {
       Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: output"));
-      directory = std::make_unique<io::OutputDirectory>(scene->output.directory);
-      parameters::write_xml_file(scene->validated, directory->file("scene.xml"));
-      write_summary_files(*directory, summary, *shape);
-      if (scene->output.write_mesh || scene->loading.type != "none")
-        fields = std::make_unique<io::XdmfOutput>(directory->file(""), "mesh", mesh, partition);
+      directory = std::make_unique<io::OutputDirectory>(scene.output.directory);
+      parameters::write_xml_file(scene.validated, directory->file("scene.xml"));
+      write_summary_files(*directory, summary, *run.shape);
+      if (scene.output.write_mesh || scene.loading.type != "none")
+        fields = std::make_unique<io::XdmfOutput>(directory->file(""), "mesh", run.mesh, run.partition);
     }, true);
-    if (scene->loading.type != "none") {
-      const auto stop = app::run_simulation(*scene, *shape, mesh, partition, comm, directory.get(), fields.get(), out);
+    if (scene.loading.type != "none") {
+      const auto stop =
+          app::run_simulation(scene, *run.shape, run.mesh, run.partition, comm, directory.get(), fields.get(), out);
       if (stop) {
         const int exit_code = stop->signal ? 128 + stop->signal : 1;
         if (root) {
@@ -195,7 +200,7 @@ int main(int argc, char** argv)
     if (root) {
       fields.reset();
       directory->commit();
-      out << "spatula: results in " << scene->output.directory << "/\n";
+      out << "spatula: results in " << scene.output.directory << "/\n";
     }
     Teuchos::TimeMonitor::summarize(comm.ptr(), out, false, true, false, Teuchos::Union, "spatula:");
   } catch (const parameters::InputError& error) {

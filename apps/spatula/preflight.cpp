@@ -195,6 +195,22 @@ mesh::HexMesh make_checked_mesh(const Scene& scene, const geometry::SpatulaShape
   return mesh;
 }
 
+mesh::HexMesh make_mesh_within_memory(const Scene& scene, const geometry::SpatulaShape& shape, MemoryEstimate& estimate)
+{
+  auto trial = scene;
+  const int requested = scene.mesh.refinement_factor;
+  trial.mesh.refinement_factor = 1;
+  auto mesh = make_checked_mesh(trial, shape);
+  const std::int64_t unrefined_nodes = mesh.node_count();
+  if (requested > 1) {
+    trial.mesh.refinement_factor = 2;
+    mesh = make_checked_mesh(trial, shape);
+  }
+  estimate = estimate_memory(scene, unrefined_nodes, requested > 1 ? mesh.node_count() : 4 * unrefined_nodes);
+  check_memory(scene, estimate);
+  return requested > 2 ? make_checked_mesh(scene, shape) : mesh;
+}
+
 void check_ranks(const mesh::HexMesh& mesh, const mesh::Partition& partition)
 {
   for (int rank = 0; rank < partition.ranks; ++rank)

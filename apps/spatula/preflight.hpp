@@ -33,6 +33,9 @@ void check_memory(const Scene& scene, const MemoryEstimate& estimate);
 // that cannot be meshed is an InputError naming the part, the parameters that shape it and, for those the scene
 // moved from the paper's values, how far they may go with the others as given.
 mesh::HexMesh make_checked_mesh(const Scene& scene, const geometry::SpatulaShape& shape);
+// The scene's mesh, made only once the memory it needs is known to be there: the meshes at refinement factors 1 and 2
+// first (checked, and the measure of what the requested one needs), then the requested one; `estimate` is filled in.
+mesh::HexMesh make_mesh_within_memory(const Scene& scene, const geometry::SpatulaShape& shape, MemoryEstimate& estimate);
 // Every rank has elements to assemble.
 void check_ranks(const mesh::HexMesh& mesh, const mesh::Partition& partition);
 
