@@ -7,6 +7,8 @@ after 'maximum iterations' = 12; NOX's scaled norms):
   non-contracting 2 / 3   give up after 2 or 3 iterations in a row that did not shrink |f|
   slow 3-0.9 / 2-0.5      ... that shrank |f| by less than 10 % (3 in a row) or 50 % (2 in a row)
   unscaled                |f|_2 <= 1e-9 nN and |dx|_inf <= 1e-6 nm as written (docs/solvers.md)
+  constant, default       every linear solve to 'Linear Solver/tolerance', and the defaults (Eisenstat-Walker
+                          forcing terms, NOX's type 2: each solve only as accurate as the Newton step needs)
 It records CPU seconds, tangents, Newton iterations, failed step attempts, and the change of P_max, Delta u_z and
 Delta Pi_ext against the base. Runs one after another (a quiet machine: CPU times are compared):
 
@@ -36,6 +38,8 @@ CONFIGURATIONS = {
     'slow-3-0.9': {'non-contracting iterations': 3, 'contraction': 0.9},
     'slow-2-0.5': {'non-contracting iterations': 2, 'contraction': 0.5},   # the default now
     'unscaled': {'non-contracting iterations': 0, 'norms': 'unscaled'},
+    'constant': {'forcing term': 'constant'},   # every linear solve to 1e-10, as before
+    'default': {},
 }
 QUANTITIES = ('P_max_nN', 'delta_u_z_nm', 'delta_Pi_ext_1e-18J')
 
@@ -57,6 +61,8 @@ def measure(work, label, newton, mesh, theta):
     row['tangents'] = int(solver.group(1)) if solver else -1
     row['residuals'] = int(solver.group(2)) if solver else -1
     row['factorizations'] = int(solver.group(3)) if solver else -1
+    solves = re.search(r'^solver: .*?(\d+) solves', text, re.M)
+    row['solves'] = int(solves.group(1)) if solves else -1
     row['failed_attempts'] = len(re.findall(r'failed \(|converged on another branch', text))
     row['jumps'] = len(re.findall(r'^  jumped in', text, re.M))
     if status == 0:
@@ -82,16 +88,16 @@ def main():
         rows.append(measure(work, label, CONFIGURATIONS[label], arguments.mesh, arguments.theta))
         print(rows[-1], flush=True)
     base = rows[0]
-    print('\n| configuration | CPU [s] | tangents | residual-only | factorizations | failed step attempts | jumps | '
+    print('\n| configuration | CPU [s] | tangents | residual-only | factorizations | MUMPS solves | failed step attempts | jumps | '
           'P_max [nN] | change of P_max / Δu_z / ΔΠ_ext [%] |')
-    print('|---|---|---|---|---|---|---|---|---|')
+    print('|---|---|---|---|---|---|---|---|---|---|')
     for r in rows:
         if r['status'] != 0:
-            print(f"| {r['configuration']} | exit {r['status']} | | | | | | | |")
+            print(f"| {r['configuration']} | exit {r['status']} | | | | | | | | |")
             continue
         change = ' / '.join(f"{100 * (r[q] / base[q] - 1):+.3f}" for q in QUANTITIES)
         print(f"| {r['configuration']} | {r['cpu_s']:.0f} ({r['cpu_s'] / base['cpu_s']:.2f}) | {r['tangents']} | "
-              f"{r['residuals']} | {r['factorizations']} | {r['failed_attempts']} | {r['jumps']} | {r['P_max_nN']:.4f} | {change} |")
+              f"{r['residuals']} | {r['factorizations']} | {r['solves']} | {r['failed_attempts']} | {r['jumps']} | {r['P_max_nN']:.4f} | {change} |")
     if arguments.docs:
         with open(os.path.join(ROOT, 'docs', 'step-control.csv'), 'w', newline='') as out:
             writer = csv.DictWriter(out, fieldnames=list(dict.fromkeys(k for r in rows for k in r)))

@@ -55,6 +55,13 @@ void NewtonParameters::declare(Teuchos::ParameterList& list)
   parameters::declare_double(list, "contraction", 0.5,
                              "|f_k| / |f_k-1| at or above which an iteration counts as non-contracting",
                              {0.0, 10.0, true, false});
+  // Default Eisenstat-Walker: on the coarse pull-offs at 60 / 45 deg 36 / 33 % fewer MUMPS solves, 38 / 31 % fewer
+  // factorizations, CPU 0.85 / 0.96 of constant, results within 0.004 % (benchmarks/step_control.py).
+  parameters::declare_string(list, "forcing term", "Eisenstat-Walker",
+                             "how accurately each linear system is solved: constant (to 'Linear Solver/tolerance' "
+                             "always) or Eisenstat-Walker (NOX's type 2: relative tolerance 0.9 (|f_k| / |f_k-1|)^1.5 "
+                             "between 'Linear Solver/tolerance' and 0.01; matters where GMRES runs on a lagged "
+                             "factorization)", {"constant", "Eisenstat-Walker"});
   parameters::declare_string(list, "norms", "scaled",
                              "how the absolute and update tolerances are applied: scaled (NOX's default, as every "
                              "recorded result ran) |f|_2 / sqrt(n) and |dx|_inf / n with n unknowns; unscaled: |f|_2 "
@@ -70,6 +77,7 @@ NewtonParameters NewtonParameters::from(const Teuchos::ParameterList& list)
   p.maximum_iterations = list.get<int>("maximum iterations");
   p.line_search = list.get<std::string>("line search");
   p.scaled_norms = list.get<std::string>("norms") == "scaled";
+  p.inexact = list.get<std::string>("forcing term") == "Eisenstat-Walker";
   p.non_contracting_iterations = list.get<int>("non-contracting iterations");
   p.contraction = list.get<double>("contraction");
   return p;
@@ -213,8 +221,14 @@ NewtonResult NewtonSolver::solve(discretization::Vector& x, std::ostream* table)
     sub.set("Minimum Step", 1e-4);
   }
   list->sublist("Direction").set("Method", "Newton");
-  list->sublist("Direction").sublist("Newton").sublist("Linear Solver").set(
-      "Tolerance", linear_solver_.parameters().tolerance);
+  auto& newton = list->sublist("Direction").sublist("Newton");
+  newton.sublist("Linear Solver").set("Tolerance", linear_solver_.parameters().tolerance);
+  if (parameters_.inexact) {   // NOX sets the linear tolerance of every iteration from the last contraction
+    newton.set("Forcing Term Method", "Type 2");
+    newton.set("Forcing Term Initial Tolerance", 1e-4);
+    newton.set("Forcing Term Minimum Tolerance", linear_solver_.parameters().tolerance);
+    newton.set("Forcing Term Maximum Tolerance", 0.01);
+  }
   list->sublist("Printing").set("Output Information", 0);
   list->sublist("Solver Options").set<Teuchos::RCP<NOX::Observer>>(
       "Observer", Teuchos::rcp(new TableObserver(result, linear_solver_, table)));

@@ -19,6 +19,7 @@ struct NewtonParameters {
   int maximum_iterations = 12;
   std::string line_search = "backtrack";   // a name in line_search_names()
   bool scaled_norms = true;                // tolerances on |f|_2 / sqrt(n) and |dx|_inf / n (NOX's default)
+  bool inexact = true;                     // Eisenstat-Walker forcing terms for the linear solves
   int non_contracting_iterations = 2;      // give up after this many iterations with |f_k| >= contraction |f_k-1|
   double contraction = 0.5;
 
