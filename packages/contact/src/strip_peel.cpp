@@ -45,7 +45,6 @@ StripPeelResult peel_strip(const StripPeelParameters& p, Teuchos::RCP<const Teuc
   auto model = Teuchos::rcp(new solvers::SpatulaModel(system, linear.lows_factory()));
   solvers::NewtonParameters newton_parameters;
   newton_parameters.maximum_iterations = 40;
-  newton_parameters.non_contracting_iterations = 0;   // the strip at 90 deg converges linearly for many iterations
   solvers::NewtonSolver newton(model, newton_parameters, linear);
   analysis::LoadPath path(*model, newton, nullptr, false);
   analysis::StepParameters steps;

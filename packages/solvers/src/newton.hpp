@@ -20,7 +20,7 @@ struct NewtonParameters {
   std::string line_search = "backtrack";   // a name in line_search_names()
   bool scaled_norms = true;                // tolerances on |f|_2 / sqrt(n) and |dx|_inf / n (NOX's default)
   bool inexact = true;                     // Eisenstat-Walker forcing terms for the linear solves
-  int non_contracting_iterations = 2;      // give up after this many iterations with |f_k| >= contraction |f_k-1|
+  int non_contracting_iterations = 0;      // give up after this many iterations with |f_k| >= contraction |f_k-1|
   double contraction = 0.5;
 
   static void declare(Teuchos::ParameterList& list);
