@@ -45,13 +45,6 @@ void agree(const Teuchos::Comm<int>& comm, const std::function<void()>& check, b
   throw AgreedFailure(message);
 }
 
-bool any_rank(const Teuchos::Comm<int>& comm, bool flag)
-{
-  int local = flag ? 1 : 0, global = 0;
-  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, local, Teuchos::outArg(global));
-  return global != 0;
-}
-
 void abort_all(int exit_code)
 {
   int initialized = 0, finalized = 0, size = 1;

@@ -23,9 +23,6 @@ public:
 // parameters::InputError stays one, any other error becomes an AgreedFailure.
 void agree(const Teuchos::Comm<int>& comm, const std::function<void()>& check, bool on_root_only = false);
 
-// Whether any rank has `flag` set (collective).
-bool any_rank(const Teuchos::Comm<int>& comm, bool flag);
-
 // Ends the whole MPI job with `exit_code` (MPI_Abort); on one rank, a plain exit.
 [[noreturn]] void abort_all(int exit_code);
 

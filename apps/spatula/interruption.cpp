@@ -3,7 +3,6 @@
 #include <Teuchos_CommHelpers.hpp>
 
 #include <csignal>
-#include <cstring>
 #include <string>
 
 namespace spatula::app {

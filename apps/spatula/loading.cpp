@@ -106,7 +106,7 @@ LoadingParameters LoadingParameters::from(const Teuchos::ParameterList& loading)
     if (used == 0 || item.find_first_not_of(" \t", used) != std::string::npos || !std::isfinite(value) ||
         value < -180.0 || value > 180.0)
       throw parameters::InputError("parameter 'Loading/checkpoints at theta_y': '" +
-                                   (item.size() > 60 ? item.substr(0, 60) + "..." : item) +
+                                   parameters::shorten(item) +
                                    "' is not an inclination in [-180, 180] deg");
     p.checkpoints.push_back(value);
   }

@@ -106,9 +106,8 @@ Checked check_everything(const Options& options, const Teuchos::Comm<int>& comm)
   });
   app::agree(comm, [&] {
     if (run.scene->loading.restart_file.empty()) return;
-    const auto enrichment = run.scene->adhesion.enabled ? run.scene->adhesion.settings.enrichment
-                                                        : discretization::Enrichment::q1c1;
-    app::check_checkpoint(*run.scene, discretization::make_node_space(run.mesh, run.partition, enrichment));
+    app::check_checkpoint(*run.scene,
+                          discretization::make_node_space(run.mesh, run.partition, app::enrichment_of(*run.scene)));
   });
   return run;
 }
@@ -156,6 +155,20 @@ int main(int argc, char** argv)
   app::install_interruption_handlers();
   std::unique_ptr<io::OutputDirectory> directory;   // rank 0, once the run has started
   std::unique_ptr<io::XdmfOutput> fields;
+  // A failure after the output directory exists, possibly on some ranks only while the others wait in a collective
+  // call: partial results and FAILURE.txt in <directory>.incomplete, and the whole job ends with exit code 1.
+  auto failed_after_start = [&](const std::exception& error) {
+    std::cerr << "spatula: error (rank " << comm->getRank() << "): " << error.what() << "\n";
+    if (directory) {
+      fields.reset();
+      std::ofstream(directory->file("FAILURE.txt")) << "spatula stopped with an error (exit code 1): " << error.what()
+                                                    << "\n";
+      directory->abandon();
+      std::cerr << "spatula: partial results in " << directory->incomplete_path() << "/\n";
+    }
+    if (comm->getSize() > 1) app::abort_all(1);
+    return 1;
+  };
 
   try {
     const Options options = parse(argc, argv);
@@ -204,28 +217,15 @@ int main(int argc, char** argv)
     }
     Teuchos::TimeMonitor::summarize(comm.ptr(), out, false, true, false, Teuchos::Union, "spatula:");
   } catch (const parameters::InputError& error) {
-    if (!directory) {   // agreed by every rank before anything was written
-      if (root) std::cerr << "spatula: input error: " << error.what() << "\n";
-      return 2;
-    }
-    std::cerr << "spatula: error (rank " << comm->getRank() << "): " << error.what() << "\n";
-    return 1;
+    if (directory) return failed_after_start(error);
+    if (root) std::cerr << "spatula: input error: " << error.what() << "\n";   // agreed by every rank, nothing written
+    return 2;
   } catch (const app::AgreedFailure& error) {
     if (root) std::cerr << "spatula: error: " << error.what() << "\n";
     if (root && directory) directory->abandon();
     return 1;
   } catch (const std::exception& error) {
-    // A failure on some ranks during the run: the others may be waiting in a collective call, so the job ends here.
-    std::cerr << "spatula: error (rank " << comm->getRank() << "): " << error.what() << "\n";
-    if (directory) {
-      fields.reset();
-      std::ofstream(directory->file("FAILURE.txt")) << "spatula stopped with an error (exit code 1): " << error.what()
-                                                    << "\n";
-      directory->abandon();
-      std::cerr << "spatula: partial results in " << directory->incomplete_path() << "/\n";
-    }
-    if (comm->getSize() > 1) app::abort_all(1);
-    return 1;
+    return failed_after_start(error);
   }
   return 0;
 }

@@ -128,7 +128,7 @@ std::string usable_ranges(const Scene& scene, mesh::Part part)
 void check_output_directory(const Scene& scene, const std::string& scene_file)
 {
   const auto& directory = scene.output.directory;
-  const std::string key = "parameter 'Output/directory' = '" + (directory.size() > 60 ? directory.substr(0, 60) + "..." : directory) + "'";
+  const std::string key = "parameter 'Output/directory' = '" + parameters::shorten(directory) + "'";
   if (const auto why = io::OutputDirectory::refusal(directory, scene.output.overwrite))
     throw parameters::InputError(key + " cannot be used: " + *why);
   if (!scene_file.empty() && io::OutputDirectory::would_replace(directory, scene_file))

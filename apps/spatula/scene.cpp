@@ -31,6 +31,11 @@ OutputParameters OutputParameters::from(const Teuchos::ParameterList& output)
   return p;
 }
 
+discretization::Enrichment enrichment_of(const Scene& scene)
+{
+  return scene.adhesion.enabled ? scene.adhesion.settings.enrichment : discretization::Enrichment::q1c1;
+}
+
 Teuchos::ParameterList valid_scene_parameters()
 {
   Teuchos::ParameterList valid("spatula scene");

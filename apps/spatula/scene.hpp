@@ -35,6 +35,9 @@ struct Scene {
   Teuchos::ParameterList validated;   // the full list with defaults filled in (echoed to the output)
 };
 
+// The enrichment of the node space: the adhesion's (Q1C1 or Q1C2), plain Q1C1 without adhesion.
+discretization::Enrichment enrichment_of(const Scene& scene);
+
 // All valid keys with defaults and docs, in sublists "Geometry", "Mesh", "Output", "Material", "Loading",
 // "Linear Solver", "Nonlinear Solver", "Adhesion".
 Teuchos::ParameterList valid_scene_parameters();

@@ -73,10 +73,8 @@ std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaSh
   const auto constraints =
       discretization::spatula_constraints(mesh, {p1.x, p1.y, p1.z}, scene.loading.hold_contact_surface);
   discretization::SystemOptions options;
-  if (scene.adhesion.enabled) {
-    options.enrichment = scene.adhesion.settings.enrichment;
-    options.contact = contact::make_contact_model(scene.adhesion.settings);
-  }
+  options.enrichment = enrichment_of(scene);
+  if (scene.adhesion.enabled) options.contact = contact::make_contact_model(scene.adhesion.settings);
   auto system =
       Teuchos::rcp(new discretization::DiscreteSystem(mesh, partition, constraints, scene.material, comm, options));
   solvers::LinearSolverFactory linear(scene.linear_solver);

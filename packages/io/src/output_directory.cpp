@@ -39,7 +39,8 @@ bool ours(const fs::path& directory)
   return fs::is_directory(directory, error) && fs::is_regular_file(directory / OutputDirectory::marker_name, error);
 }
 
-// The staging, incomplete and set-aside names beside a result: all of them a run may create and remove.
+// The result itself and the staging, incomplete and set-aside names beside it: all a run may create and remove.
+constexpr const char* run_suffixes[] = {"", ".partial", ".incomplete", ".previous"};
 fs::path sibling(const fs::path& path, const char* suffix) { return fs::path(path.string() + suffix); }
 
 void make_ours(const fs::path& directory)
@@ -96,7 +97,7 @@ std::optional<std::string> OutputDirectory::refusal(const std::string& path, boo
     if (!error && inside(home_path, real)) return "it is the home directory or contains it";
   }
   if (fs::is_symlink(target, error)) return "it is a symbolic link (give the directory itself)";
-  for (const char* suffix : {"", ".partial", ".incomplete", ".previous"}) {
+  for (const char* suffix : run_suffixes) {
     const fs::path candidate = sibling(target, suffix);
     if (!fs::exists(fs::symlink_status(candidate, error))) continue;
     const std::string name = "'" + candidate.string() + "'";
@@ -116,7 +117,7 @@ bool OutputDirectory::would_replace(const std::string& path, const std::string& 
   std::error_code error;
   const fs::path target = absolute_path(path);
   const fs::path real_file = fs::weakly_canonical(absolute_path(file), error);
-  for (const char* suffix : {"", ".partial", ".incomplete", ".previous"})
+  for (const char* suffix : run_suffixes)
     if (inside(real_file, fs::weakly_canonical(sibling(target, suffix), error))) return true;
   return false;
 }

@@ -19,6 +19,11 @@ std::string key_path(const std::string& path, const std::string& name)
   return path.empty() ? name : path + "/" + name;
 }
 
+std::string shorten(const std::string& value)
+{
+  return value.size() > 60 ? value.substr(0, 60) + "... (" + std::to_string(value.size()) + " characters)" : value;
+}
+
 namespace {
 
 std::string format_number(double value)
@@ -28,12 +33,6 @@ std::string format_number(double value)
   out.precision(10);
   out << value;
   return out.str();
-}
-
-// A value as quoted in a message: at most 60 characters of it.
-std::string shorten(const std::string& value)
-{
-  return value.size() > 60 ? value.substr(0, 60) + "... (" + std::to_string(value.size()) + " characters)" : value;
 }
 
 std::string join(const std::vector<std::string>& words)

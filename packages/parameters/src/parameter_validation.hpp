@@ -60,6 +60,8 @@ void write_xml_file(const ParameterList& list, const std::string& file_name);
 
 // The path of a key for messages, e.g. "Geometry/l_p".
 std::string key_path(const std::string& path, const std::string& name);
+// A value as quoted in a message: at most 60 characters of it (and its length when longer).
+std::string shorten(const std::string& value);
 
 // Throws InputError("<key>: <value> <message>") for cross-parameter checks done after validation.
 [[noreturn]] void fail(const std::string& key, double value, const std::string& message);
