@@ -1,6 +1,10 @@
 // Solid assembly and Newton iteration timings on the spatula (no adhesion, the pad held at Z = 0).
 //
-//   solid_benchmark <level> <linear solver> [repetitions]     (run with mpiexec -np 1 or 2)
+//   solid_benchmark <level> <linear solver> [repetitions] [ordering=NAME] [low-rank=TOLERANCE] [lag=N]
+//                   [refactor=cost|lag] [factor-only=1]                           (run with mpiexec -np 1 or 2)
+//
+// factor-only=1: just the MUMPS analysis, `repetitions` factorizations and a solve of the tangent at the undeformed
+// state (fast comparison of orderings and low-rank tolerances on the fine mesh); prints one CSV line of its own.
 //
 // Prints one CSV line: medians over `repetitions` of the residual-only and residual+tangent assembly, the
 // resulting element throughput, the effective memory traffic of the tangent fill against a STREAM-like triad
@@ -53,6 +57,46 @@ double timer_total(const std::string& name)
   return Teuchos::TimeMonitor::getNewTimer(name)->totalElapsedTime();
 }
 
+// Analysis, factorizations and one solve of the tangent at the undeformed state; one CSV line.
+int factor_benchmark(discretization::DiscreteSystem& system, const solvers::MumpsParameters& parameters,
+                     const std::string& level, int repetitions, const std::string& variant)
+{
+  const auto comm = system.owned_map()->getComm();
+  auto x = system.create_vector();
+  auto residual = system.create_vector();
+  system.evaluate(*x, residual.get(), true);
+  solvers::MumpsSolver mumps(system.owned_map(), parameters);
+  std::vector<double> factor_times;
+  for (int r = 0; r < std::max(repetitions, 1); ++r) {
+    comm->barrier();
+    const auto start = std::chrono::steady_clock::now();
+    mumps.factor(*system.jacobian());
+    comm->barrier();
+    factor_times.push_back(seconds(start));
+  }
+  // Accuracy of one solve with these factors: |K u - f| / |f| for f = the residual at a rotated state.
+  auto b = system.create_vector(), solution = system.create_vector(), check = system.create_vector();
+  b->randomize();
+  comm->barrier();
+  const auto start = std::chrono::steady_clock::now();
+  mumps.apply(*b, *solution);
+  comm->barrier();
+  const double solve_seconds = seconds(start);
+  system.jacobian()->apply(*solution, *check);
+  check->update(-1.0, *b, 1.0);
+  const double relative_residual = check->norm2() / b->norm2();
+  const auto& statistics = mumps.statistics();
+  if (comm->getRank() == 0)
+    std::cout << "level,ranks,options,unknowns,ordering_used,analysis_s,factorization_s_median,solve_s,"
+                 "relative_residual_one_solve,factorization_gflop,factor_entries_millions,factorization_MB_all_ranks\n"
+              << level << "," << comm->getSize() << "," << (variant.empty() ? "default" : variant) << ","
+              << system.owned_map()->getGlobalNumElements() << "," << statistics.ordering_used << ","
+              << statistics.analysis_seconds << "," << median(factor_times) << "," << solve_seconds << ","
+              << relative_residual << "," << statistics.factorization_flops / 1e9 << ","
+              << statistics.factor_entries / 1e6 << "," << statistics.factorization_megabytes << "\n";
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -60,7 +104,8 @@ int main(int argc, char** argv)
   Teuchos::GlobalMPISession session(&argc, &argv, nullptr);
   auto comm = Teuchos::DefaultComm<int>::getComm();
   if (argc < 3) {
-    std::cerr << "usage: solid_benchmark <coarse|medium|fine> <mumps|gmres-ilu> [repetitions]\n";
+    std::cerr << "usage: solid_benchmark <coarse|medium|fine> <mumps|gmres-ilu> [repetitions] [ordering=NAME] "
+                 "[low-rank=TOLERANCE] [lag=N]\n";
     return 2;
   }
   const std::string level = argv[1], solver_type = argv[2];
@@ -77,6 +122,31 @@ int main(int argc, char** argv)
       mesh, partition, discretization::spatula_constraints(mesh, {p1.x, p1.y, p1.z}, true), {}, comm));
   solvers::LinearSolverParameters linear_parameters;
   linear_parameters.type = solver_type;
+  std::string variant;   // the MUMPS options given, for the CSV
+  bool factor_only = false;
+  for (int a = 4; a < argc; ++a) {
+    const std::string option = argv[a];
+    const auto equals = option.find('=');
+    const std::string key = option.substr(0, equals), value = option.substr(equals + 1);
+    const auto& names = solvers::mumps_ordering_names();
+    if (key == "ordering" && std::find(names.begin(), names.end(), value) != names.end())
+      linear_parameters.mumps.ordering =
+          static_cast<solvers::MumpsOrdering>(std::find(names.begin(), names.end(), value) - names.begin());
+    else if (key == "low-rank")
+      linear_parameters.mumps.low_rank_tolerance = std::stod(value);
+    else if (key == "lag")
+      linear_parameters.lag = std::stoi(value);
+    else if (key == "refactor" && (value == "cost" || value == "lag"))
+      linear_parameters.refactor = value == "cost" ? solvers::RefactorRule::cost : solvers::RefactorRule::lag;
+    else if (key == "factor-only")
+      factor_only = value == "1";
+    else {
+      std::cerr << "solid_benchmark: unknown option '" << option << "'\n";
+      return 2;
+    }
+    variant += (variant.empty() ? "" : " ") + option;
+  }
+  if (factor_only) return factor_benchmark(*system, linear_parameters.mumps, level, repetitions, variant);
   solvers::LinearSolverFactory linear(linear_parameters);
   auto model = Teuchos::rcp(new solvers::SpatulaModel(system, linear.lows_factory()));
   solvers::NewtonSolver newton(model, solvers::NewtonParameters{}, linear);
@@ -119,16 +189,23 @@ int main(int argc, char** argv)
 
   const auto entries = system->jacobian()->getGlobalNumEntries();
   const double bytes_per_fill = double(entries) * (8.0 + 4.0);   // values and column indices of the matrix
+  const auto& statistics = linear.mumps_statistics();
   if (root) {
     std::cout << "level,ranks,solver,elements,unknowns,matrix_entries,residual_s,tangent_s,residual_elements_per_s,"
                  "tangent_elements_per_s,tangent_fill_GBps,triad_GBps_per_rank,newton_iterations,"
-                 "newton_s_per_iteration,assembly_s_per_iteration,linear_s_per_iteration\n";
+                 "newton_s_per_iteration,assembly_s_per_iteration,linear_s_per_iteration,options,ordering_used,"
+                 "factorizations,factorization_s_median_last,factorization_gflop,factor_entries_millions,"
+                 "factorization_MB_all_ranks\n";
     const double r = median(residual_times), t = median(tangent_times);
     std::cout << level << "," << comm->getSize() << "," << solver_type << "," << mesh.element_count() << ","
               << system->owned_map()->getGlobalNumElements() << "," << entries << "," << r << "," << t << ","
               << mesh.element_count() / r << "," << mesh.element_count() / t << "," << bytes_per_fill / t / 1e9 << ","
               << bandwidth / 1e9 << "," << iterations << "," << newton_seconds / iterations << ","
-              << assembly_seconds / iterations << "," << (newton_seconds - assembly_seconds) / iterations << "\n";
+              << assembly_seconds / iterations << "," << (newton_seconds - assembly_seconds) / iterations << ","
+              << (variant.empty() ? "default" : variant) << "," << statistics.ordering_used << ","
+              << statistics.factorizations << "," << statistics.last_factorization_seconds << ","
+              << statistics.factorization_flops / 1e9 << "," << statistics.factor_entries / 1e6 << ","
+              << statistics.factorization_megabytes << "\n";
   }
   return 0;
 }

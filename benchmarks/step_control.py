@@ -9,7 +9,12 @@ after 'maximum iterations' = 12; NOX's scaled norms):
   unscaled                |f|_2 <= 1e-9 nN and |dx|_inf <= 1e-6 nm as written (docs/solvers.md)
   constant / Eisenstat-Walker  with the give-up rule 2 x 0.5: every linear solve to 'Linear Solver/tolerance', or
                           NOX's type-2 forcing terms (each solve only as accurate as the Newton step needs)
-  default                 today's defaults: Eisenstat-Walker, the give-up rule off
+  default                 the defaults before the fold-aware rule: Eisenstat-Walker, the give-up rule off
+  after-failure           the give-up rule 2 x 0.5 only in attempts that retry a load after a failed step
+  cost-refactor           after-failure with 'Linear Solver/refactor' = cost (measured time decides refactoring)
+  new                     today's defaults (as the parameter list declares them)
+(A 'resume' rule, run 2026-12-02 and since removed, restarted the increments at half the failed one once the path
+had passed a failed load: 1,256 -> 1,231 tangents at 45 deg, 1,185 -> 1,215 at 60 deg, CPU 0.98 / 1.07: no gain.)
 It records CPU seconds, tangents, Newton iterations, failed step attempts, and the change of P_max, Delta u_z and
 Delta Pi_ext against the base. Runs one after another (a quiet machine: CPU times are compared):
 
@@ -32,18 +37,24 @@ from curves import pull_off_summary  # noqa: E402
 from scenes import benchmark_scene  # noqa: E402
 
 APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula'))
-BEFORE = {'non-contracting iterations': 0, 'forcing term': 'constant'}   # the rules before issue 15
-GIVE_UP = {'non-contracting iterations': 2, 'contraction': 0.5}
-CONFIGURATIONS = {   # each as the rows of docs/step-control.csv were run
+LAG = {'Linear Solver': {'refactor': 'lag'}}   # a factorization serves 4 tangents (before 'refactor' = cost)
+BEFORE = {'non-contracting iterations': 0, 'forcing term': 'constant', **LAG}   # before issue 15
+ALWAYS = {'give up': 'always'}   # the rule in every attempt, as it was before 'give up' existed
+GIVE_UP = {'non-contracting iterations': 2, 'contraction': 0.5, **ALWAYS, **LAG}
+AFTER_FAILURE = {'non-contracting iterations': 2, 'contraction': 0.5, 'give up': 'after a failed step'}
+CONFIGURATIONS = {   # each as the rows of docs/step-control.csv were run ('Linear Solver': that list's entries)
     'base': BEFORE,
-    'non-contracting-3': {**BEFORE, 'non-contracting iterations': 3, 'contraction': 1.0},
-    'non-contracting-2': {**BEFORE, 'non-contracting iterations': 2, 'contraction': 1.0},
-    'slow-3-0.9': {**BEFORE, 'non-contracting iterations': 3, 'contraction': 0.9},
+    'non-contracting-3': {**BEFORE, 'non-contracting iterations': 3, 'contraction': 1.0, **ALWAYS},
+    'non-contracting-2': {**BEFORE, 'non-contracting iterations': 2, 'contraction': 1.0, **ALWAYS},
+    'slow-3-0.9': {**BEFORE, 'non-contracting iterations': 3, 'contraction': 0.9, **ALWAYS},
     'slow-2-0.5': {**BEFORE, **GIVE_UP},
     'unscaled': {**BEFORE, 'norms': 'unscaled'},
     'constant': {**GIVE_UP, 'forcing term': 'constant'},   # runs 6, 7
     'Eisenstat-Walker': GIVE_UP,                            # runs 6, 7
-    'default': {},                                          # Eisenstat-Walker, no give-up rule
+    'default': {'non-contracting iterations': 0, **LAG},   # Eisenstat-Walker, no give-up rule
+    'after-failure': {**AFTER_FAILURE, **LAG},
+    'cost-refactor': {**AFTER_FAILURE, 'Linear Solver': {'refactor': 'cost'}},
+    'new': {},
 }
 QUANTITIES = ('P_max_nN', 'delta_u_z_nm', 'delta_Pi_ext_1e-18J')
 
@@ -51,7 +62,10 @@ QUANTITIES = ('P_max_nN', 'delta_u_z_nm', 'delta_Pi_ext_1e-18J')
 def measure(work, label, newton, mesh, theta):
     directory = f'{mesh}-{theta:g}-{label}'
     xml = os.path.join(work, directory + '.xml')
-    open(xml, 'w').write(benchmark_scene(directory, mesh=mesh, theta_y=float(theta), newton=newton or None))
+    newton = dict(newton)
+    linear = newton.pop('Linear Solver', None)
+    open(xml, 'w').write(benchmark_scene(directory, mesh=mesh, theta_y=float(theta), newton=newton or None,
+                                         linear_solver=linear))
     environment = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     started = time.time()

@@ -249,6 +249,9 @@ std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaSh
     if (statistics.factorizations > 0)
       out << "; MUMPS: " << statistics.analyses << " analyses, " << statistics.factorizations << " factorizations (" << statistics.reused << " tangents served by an earlier one, "
           << statistics.factorization_seconds << " s), " << statistics.solves << " solves";
+    if (const auto* descents = path.descent_statistics())
+      out << "; jumps' energy descents: " << descents->analyses << " analyses, " << descents->factorizations
+          << " factorizations (" << descents->factorization_seconds << " s), " << descents->solves << " solves";
     out << "\n";
   }
   if (!failure && !interrupted_by) return std::nullopt;

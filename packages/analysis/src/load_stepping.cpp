@@ -167,7 +167,7 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
     if (previous_increment_ > 0.0) trial->update(increment / previous_increment_, *x_, -increment / previous_increment_, *previous_, 1.0);
     system.set_master(*trial, controlled, value + direction * increment);
     std::ostringstream table;
-    const auto result = newton_.solve(*trial, tables_ ? &table : nullptr);
+    const auto result = newton_.solve(*trial, tables_ ? &table : nullptr, failed.known());
     if (!result.converged) {
       if (log_) *log_ << table.str() << "  step to " << name << " = " << load_text((value + direction * increment) / unit)
                       << " failed (" << result.failure << "); cutting the increment\n";
@@ -307,7 +307,13 @@ std::variant<int, std::string> LoadPath::descend(Vector& x)
 {
   auto& system = model_.system();
   auto f = system.create_vector(), direction = system.create_vector(), trial = system.create_vector();
-  solvers::MumpsSolver mumps(system.owned_map(), solvers::MumpsParameters{});
+  if (!descent_solver_) {   // the user's MUMPS options, but exact LDL^T factors: the descent needs their inertia
+    auto parameters = newton_.linear_solver().parameters().mumps;
+    parameters.symmetric = true;
+    parameters.low_rank_tolerance = 0.0;
+    descent_solver_ = std::make_unique<solvers::MumpsSolver>(system.owned_map(), parameters);
+  }
+  auto& mumps = *descent_solver_;
   auto energy_at = [&](const Vector& state, bool& admissible) {
     const auto evaluation = system.evaluate(state, nullptr, false);
     admissible = evaluation.admissible;

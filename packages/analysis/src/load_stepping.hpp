@@ -7,6 +7,7 @@
 #include "newton.hpp"
 
 #include <functional>
+#include <memory>
 #include <iosfwd>
 #include <optional>
 #include <variant>
@@ -39,6 +40,7 @@ public:
   void failed(double load);     // a step to `load` failed
   void reached(double value);   // a step converged at `value`: the failed load is forgotten once reached
   void forget();                // after a jump or arc-length past the instability
+  bool known() const { return known_; }   // a load ahead failed (a fold may be near)
   // The increment to take from `value`: `increment`, or while bisecting half the gap to the failed load (the whole
   // gap once its half would be below the smallest increment).
   double limit(double increment, double value) const;
@@ -146,6 +148,11 @@ public:
   // The detachment test that ends a path cleanly.
   void set_detachment_test(std::function<bool(const LoadPoint&)> test) { detachment_test_ = std::move(test); }
   bool detached() const { return detached_; }
+  // The factorizations of the jumps' energy descents (null before the first descent).
+  const solvers::MumpsStatistics* descent_statistics() const
+  {
+    return descent_solver_ ? &descent_solver_->statistics() : nullptr;
+  }
 
   // Replaces the current state by `guess` and solves for equilibrium at the current load (e.g. the pad pressed onto
   // a rough substrate before loading); the result becomes the path's first point (history reset).
@@ -173,6 +180,7 @@ private:
   std::optional<ArcLengthParameters> arc_length_;
   PastFolds past_folds_ = PastFolds::stop;
   JumpParameters jump_;
+  std::unique_ptr<solvers::MumpsSolver> descent_solver_;   // LDL^T of the descents: one analysis for the whole path
   std::function<bool(const LoadPoint&)> detachment_test_;
   bool detached_ = false;
 };

@@ -45,6 +45,7 @@ StripPeelResult peel_strip(const StripPeelParameters& p, Teuchos::RCP<const Teuc
   auto model = Teuchos::rcp(new solvers::SpatulaModel(system, linear.lows_factory()));
   solvers::NewtonParameters newton_parameters;
   newton_parameters.maximum_iterations = 40;
+  newton_parameters.non_contracting_iterations = 0;   // the slow iterations at the peel front are needed
   solvers::NewtonSolver newton(model, newton_parameters, linear);
   analysis::LoadPath path(*model, newton, nullptr, false);
   analysis::StepParameters steps;

@@ -4,11 +4,14 @@
 
 #include <Stratimikos_DefaultLinearSolverBuilder.hpp>
 #include <Teuchos_AbstractFactoryStd.hpp>
+#include <Teuchos_CommHelpers.hpp>
 #include <Thyra_DefaultPreconditioner.hpp>
 #include <Thyra_Ifpack2PreconditionerFactory.hpp>
 #include <Thyra_PreconditionerFactoryBase.hpp>
 #include <Thyra_TpetraLinearOp.hpp>
 #include <Thyra_TpetraThyraWrappers.hpp>
+
+#include <algorithm>
 
 namespace spatula::solvers {
 
@@ -20,6 +23,27 @@ const std::vector<std::string>& linear_solver_names()
 {
   static const std::vector<std::string> names = {"mumps", "gmres-ilu"};
   return names;
+}
+
+const std::vector<std::string>& refactor_rule_names()
+{
+  static const std::vector<std::string> names = {"lag", "cost"};
+  return names;
+}
+
+void RefactorCost::factored(double factorization_seconds)
+{
+  cycle_seconds_ = factorization_seconds;
+  tangents_ = 1;
+}
+
+bool RefactorCost::keep(double last_tangent_solve_seconds)
+{
+  if (tangents_ == 0) return false;   // nothing factored yet
+  cycle_seconds_ += last_tangent_solve_seconds;
+  if (last_tangent_solve_seconds > cycle_seconds_ / tangents_) return false;
+  ++tangents_;
+  return true;
 }
 
 void LinearSolverParameters::declare(Teuchos::ParameterList& list)
@@ -40,6 +64,12 @@ void LinearSolverParameters::declare(Teuchos::ParameterList& list)
   parameters::declare_int(list, "lag applications", 8,
                           "mumps: refactor once the solves of one tangent needed more preconditioner applications",
                           Range::closed(1, 1000));
+  parameters::declare_string(list, "refactor", "cost",
+                             "mumps: when a kept factorization is replaced: lag (after 'lag' tangents or once a "
+                             "tangent needed more than 'lag applications' solves) or cost (once the last tangent's "
+                             "solves took longer than the average time per tangent of the factorization's cycle, "
+                             "factorization included; 'lag' and 'lag applications' are then not used)",
+                             refactor_rule_names());
 }
 
 LinearSolverParameters LinearSolverParameters::from(const Teuchos::ParameterList& list)
@@ -52,6 +82,9 @@ LinearSolverParameters LinearSolverParameters::from(const Teuchos::ParameterList
   p.mumps = MumpsParameters::from(list.sublist("MUMPS"));
   p.lag = list.get<int>("lag");
   p.lag_applications = list.get<int>("lag applications");
+  const auto& rules = refactor_rule_names();
+  p.refactor = static_cast<RefactorRule>(
+      std::find(rules.begin(), rules.end(), list.get<std::string>("refactor")) - rules.begin());
   return p;
 }
 
@@ -62,9 +95,8 @@ using ThyraOperator = Thyra::TpetraLinearOp<double, LocalOrdinal, GlobalOrdinal,
 // MUMPS as a Thyra preconditioner: A^-1 itself. Keeps one MumpsSolver (and its symbolic analysis) per map.
 class MumpsPreconditionerFactory : public Thyra::PreconditionerFactoryBase<double> {
 public:
-  MumpsPreconditionerFactory(MumpsParameters parameters, int lag, int lag_applications,
-                             std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver)
-      : parameters_(parameters), lag_(lag), lag_applications_(lag_applications), solver_(std::move(solver))
+  MumpsPreconditionerFactory(LinearSolverParameters parameters, std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver)
+      : parameters_(std::move(parameters)), solver_(std::move(solver))
   {
   }
 
@@ -86,20 +118,17 @@ public:
     if (matrix.is_null()) throw std::logic_error("MUMPS preconditioner: operator is not a Tpetra CrsMatrix");
     auto& solver = *solver_;
     if (solver.is_null() || !solver->getDomainMap()->isSameAs(*matrix->getRowMap()))
-      solver = Teuchos::rcp(new MumpsSolver(matrix->getRowMap(), parameters_));
-    // Lagging: keep the factors while they still precondition well (decided from how many applications the
-    // solves of the previous tangent needed; the same counts on every rank, so the decision is collective).
-    const auto& statistics = solver->statistics();
-    const bool keep = lag_ > 0 && statistics.factorizations > 0 && served_ < lag_ &&
-                      statistics.applications_since_factor - applications_at_init_ <= lag_applications_;
-    if (keep) {
+      solver = Teuchos::rcp(new MumpsSolver(matrix->getRowMap(), parameters_.mumps));
+    if (keep_factors(*solver, *matrix->getRowMap()->getComm())) {
       ++served_;
       solver->count_reuse();
     } else {
       solver->factor(*matrix);
       served_ = 0;
+      cost_.factored(solver->statistics().last_factorization_seconds);
     }
     applications_at_init_ = solver->statistics().applications_since_factor;
+    solve_seconds_at_init_ = solver->statistics().solve_seconds;
     auto& target = dynamic_cast<Thyra::DefaultPreconditioner<double>&>(*preconditioner);
     const auto space = Thyra::tpetraVectorSpace<double>(matrix->getRowMap());
     const Teuchos::RCP<const Thyra::LinearOpBase<double>> inverse =
@@ -130,6 +159,22 @@ public:
   }
 
 private:
+  // Whether the current factors serve the next tangent too, decided from the solves of the previous tangent (they
+  // ran with the current factors). Collective: refactoring is a collective call.
+  bool keep_factors(const MumpsSolver& solver, const Teuchos::Comm<int>& comm) const
+  {
+    const auto& statistics = solver.statistics();
+    if (statistics.factorizations == 0) return false;
+    if (parameters_.refactor == RefactorRule::lag) {   // the same counts on every rank
+      return parameters_.lag > 0 && served_ < parameters_.lag &&
+             statistics.applications_since_factor - applications_at_init_ <= parameters_.lag_applications;
+    }
+    int refactor = cost_.keep(statistics.solve_seconds - solve_seconds_at_init_) ? 0 : 1;
+    // The clocks differ by rank: any rank that would refactor decides for all.
+    Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, refactor, Teuchos::outArg(refactor));
+    return refactor == 0;
+  }
+
   static Teuchos::RCP<const discretization::CrsMatrix> matrix_of(const Thyra::LinearOpSourceBase<double>& source)
   {
     const auto op = Teuchos::rcp_dynamic_cast<const ThyraOperator>(source.getOp());
@@ -137,28 +182,27 @@ private:
     return Teuchos::rcp_dynamic_cast<const discretization::CrsMatrix>(op->getConstTpetraOperator());
   }
 
-  MumpsParameters parameters_;
-  int lag_ = 0, lag_applications_ = 8;
+  LinearSolverParameters parameters_;
   std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver_;
   Teuchos::RCP<Teuchos::ParameterList> list_;
-  mutable int served_ = 0, applications_at_init_ = 0;
+  mutable int served_ = 0, applications_at_init_ = 0;   // tangents the factors served after their own
+  mutable double solve_seconds_at_init_ = 0.0;          // MUMPS solve time when the last tangent came
+  mutable RefactorCost cost_;
 };
 
 class MumpsFactoryCreator : public Teuchos::AbstractFactory<Thyra::PreconditionerFactoryBase<double>> {
 public:
-  MumpsFactoryCreator(MumpsParameters parameters, int lag, int lag_applications,
-                      std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver)
-      : parameters_(parameters), lag_(lag), lag_applications_(lag_applications), solver_(std::move(solver))
+  MumpsFactoryCreator(LinearSolverParameters parameters, std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver)
+      : parameters_(std::move(parameters)), solver_(std::move(solver))
   {
   }
   Teuchos::RCP<Thyra::PreconditionerFactoryBase<double>> create() const override
   {
-    return Teuchos::rcp(new MumpsPreconditionerFactory(parameters_, lag_, lag_applications_, solver_));
+    return Teuchos::rcp(new MumpsPreconditionerFactory(parameters_, solver_));
   }
 
 private:
-  MumpsParameters parameters_;
-  int lag_, lag_applications_;
+  LinearSolverParameters parameters_;
   std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver_;
 };
 
@@ -171,9 +215,10 @@ Teuchos::RCP<Teuchos::ParameterList> stratimikos_list(const LinearSolverParamete
   auto& gmres = belos.sublist("Solver Types").sublist("Pseudo Block GMRES");
   gmres.set("Convergence Tolerance", p.tolerance);
   if (p.type == "mumps") {
-    // An exact inverse needs one iteration (a few more refine); a lagged factorization a few more.
-    gmres.set("Maximum Iterations", p.lag > 0 ? 60 : 10);
-    gmres.set("Num Blocks", p.lag > 0 ? 60 : 10);
+    // An exact inverse needs one iteration (a few more refine); a lagged or low-rank factorization a few more.
+    const bool approximate = p.lag > 0 || p.refactor == RefactorRule::cost || p.mumps.low_rank_tolerance > 0.0;
+    gmres.set("Maximum Iterations", approximate ? 60 : 10);
+    gmres.set("Num Blocks", approximate ? 60 : 10);
     list->set("Preconditioner Type", "MUMPS");
   } else {
     gmres.set("Maximum Iterations", p.maximum_iterations);
@@ -202,7 +247,7 @@ LinearSolverFactory::LinearSolverFactory(const LinearSolverParameters& parameter
   impl.parameters = parameters;
   Stratimikos::DefaultLinearSolverBuilder builder;
   builder.setPreconditioningStrategyFactory(
-      Teuchos::rcp(new MumpsFactoryCreator(parameters.mumps, parameters.lag, parameters.lag_applications, impl.mumps)),
+      Teuchos::rcp(new MumpsFactoryCreator(parameters, impl.mumps)),
       "MUMPS");
   using Ifpack2Factory = Thyra::Ifpack2PreconditionerFactory<discretization::CrsMatrix>;
   builder.setPreconditioningStrategyFactory(

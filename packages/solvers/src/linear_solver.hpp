@@ -7,6 +7,10 @@
 //              then needs a few iterations instead of one) until the solves it serves take more than
 //              `lag applications` preconditioner applications, or `lag` tangents have passed: the Newton
 //              directions stay exact (GMRES converges to the tolerance), only the factorizations are saved.
+//              With `refactor` = cost the decision is made from measured time instead: a factorization is kept
+//              while the last tangent's solves took less than the average cost per tangent of the current
+//              factorization's cycle (its factorization time plus all the solve time it served, over its tangents);
+//              that keeps the long-run cost per tangent near its minimum whatever the mesh size.
 //   gmres-ilu  Belos GMRES with Ifpack2 ILU(k) of each rank's rows (block Jacobi across ranks).
 //
 // The MUMPS factorization object lives as long as the factory, so its symbolic analysis is reused by every
@@ -21,6 +25,27 @@
 
 namespace spatula::solvers {
 
+// When a kept MUMPS factorization is replaced by a new one.
+enum class RefactorRule { lag, cost };
+const std::vector<std::string>& refactor_rule_names();   // in the order of RefactorRule
+
+// The cost rule for refactoring, on one rank's clock. A factorization's cycle costs its factorization time plus the
+// solve time of every tangent it served; keeping it for one more tangent pays while the last tangent's solves cost
+// no more than the cycle's average per tangent so far. Renewing when the marginal cost reaches the average keeps
+// the long-run cost per tangent near its minimum (solves get dearer as the factors age), and it adapts by itself:
+// on a small mesh (factorization ~20 solves) it refactors often, on the fine mesh (~70 solves) rarely.
+class RefactorCost {
+public:
+  void factored(double factorization_seconds);   // a new cycle
+  // The next tangent keeps the factors, given the solve time the last tangent took with them.
+  bool keep(double last_tangent_solve_seconds);
+  int tangents() const { return tangents_; }     // in this cycle, the factorization's own included
+
+private:
+  double cycle_seconds_ = 0.0;
+  int tangents_ = 0;
+};
+
 struct LinearSolverParameters {
   std::string type = "mumps";   // a name in linear_solver_names()
   double tolerance = 1e-10;     // relative residual of each linear solve
@@ -29,6 +54,7 @@ struct LinearSolverParameters {
   MumpsParameters mumps;
   int lag = 0;                  // tangents a MUMPS factorization may serve as preconditioner (0: refactor always)
   int lag_applications = 8;     // refactor once a tangent's solves needed more applications than this
+  RefactorRule refactor = RefactorRule::cost;   // lag: the two limits above; cost: measured time
 
   static void declare(Teuchos::ParameterList& list);
   static LinearSolverParameters from(const Teuchos::ParameterList& list);

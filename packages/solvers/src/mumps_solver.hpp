@@ -11,6 +11,8 @@
 #include <Teuchos_ParameterList.hpp>
 
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace spatula::solvers {
 
@@ -19,11 +21,18 @@ using discretization::Map;
 using discretization::MultiVector;
 using discretization::Operator;
 
+// Fill-reducing orderings MUMPS may offer (ICNTL(7)); which are built in depends on the MUMPS library linked.
+enum class MumpsOrdering { automatic, amd, amf, qamd, pord, scotch, metis };
+const std::vector<std::string>& mumps_ordering_names();   // in the order of MumpsOrdering
+
 struct MumpsParameters {
   bool symmetric = true;        // LDL^T (SYM = 2); false: LU (SYM = 0)
   int memory_relaxation = 40;   // ICNTL(14), per cent
   bool verbose = false;         // MUMPS' own statistics on standard output
   bool keep_workspace = true;   // freed memory stays in the process for the next factorization (mallopt)
+  MumpsOrdering ordering = MumpsOrdering::automatic;
+  double low_rank_tolerance = 1e-5;   // block low-rank factorization (ICNTL(35), CNTL(7)); 0: full rank
+  int low_rank_from = 100000;          // ... for systems of at least this many unknowns (smaller: full rank)
   static void declare(Teuchos::ParameterList& list);
   static MumpsParameters from(const Teuchos::ParameterList& list);
 };
@@ -38,6 +47,11 @@ struct MumpsStatistics {
   int applications_since_factor = 0;   // solves done with the current factors (lagging decisions)
   int reused = 0;               // times a stale factorization was kept as preconditioner
   double analysis_seconds = 0.0, factorization_seconds = 0.0, solve_seconds = 0.0;
+  double last_factorization_seconds = 0.0;   // wall time of the latest factorization
+  std::string ordering_used;      // INFOG(7) of the latest analysis
+  double factorization_flops = 0.0;   // RINFOG(3): operations of the latest factorization
+  double factor_entries = 0.0;        // INFOG(29) (INFOG(9) without low rank): entries in the factors
+  int factorization_megabytes = 0;    // INFOG(22): memory of the factorization summed over the ranks
 };
 
 class MumpsSolver : public Operator {

@@ -20,7 +20,8 @@ struct NewtonParameters {
   std::string line_search = "backtrack";   // a name in line_search_names()
   bool scaled_norms = true;                // tolerances on |f|_2 / sqrt(n) and |dx|_inf / n (NOX's default)
   bool inexact = true;                     // Eisenstat-Walker forcing terms for the linear solves
-  int non_contracting_iterations = 0;      // give up after this many iterations with |f_k| >= contraction |f_k-1|
+  int non_contracting_iterations = 2;      // give up after this many iterations with |f_k| >= contraction |f_k-1|
+  bool give_up_only_after_failure = true;  // ... only in attempts made after a step failed (near a fold)
   double contraction = 0.5;
 
   static void declare(Teuchos::ParameterList& list);
@@ -49,8 +50,11 @@ class NewtonSolver {
 public:
   NewtonSolver(Teuchos::RCP<SpatulaModel> model, const NewtonParameters& parameters,
                const LinearSolverFactory& linear_solver);
-  // Solves f(x) = 0 starting from x; on success x holds the solution, otherwise x is unchanged.
-  NewtonResult solve(discretization::Vector& x, std::ostream* table) const;
+  // Solves f(x) = 0 starting from x; on success x holds the solution, otherwise x is unchanged. `after_failure`:
+  // the caller retries after a failed step (a fold may be near), where the give-up rule applies by default.
+  NewtonResult solve(discretization::Vector& x, std::ostream* table, bool after_failure = false) const;
+
+  const LinearSolverFactory& linear_solver() const { return linear_solver_; }
 
 private:
   Teuchos::RCP<SpatulaModel> model_;

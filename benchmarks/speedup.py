@@ -1,0 +1,165 @@
+#!/usr/bin/env python3
+"""Issue 15's outcome, old against new in one run of this script: writes docs/speedup.csv
+(case,before_s,after_s,ratio,max_result_change_pct, plus what each case counted) and prints the table for
+docs/performance.md.
+
+Cases (each 'before' is the code as it was at commit 0f7a416, reached through the parameters that keep its
+behaviour: 'Linear Solver/refactor' = lag with 'lag' 4, full-rank MUMPS, 'Nonlinear Solver/non-contracting
+iterations' = 0; 'after' is today's defaults):
+  fine-newton-iteration   benchmarks' solid_benchmark on the fine mesh (318,087 unknowns), 2 ranks: seconds per
+                          Newton iteration of a 2.5 deg rotation step of the spatula without adhesion; also the
+                          factorization memory MUMPS reports (INFOG(22), all ranks). A third run with a fresh
+                          factorization every iteration (lag 0, the solid benchmark's setting when docs/performance.md
+                          recorded 39.3 s) is recorded as fine-newton-iteration-fresh-factors.
+  medium-pull-off-45      the medium frictionless Q1C2 pull-off at 45 deg (rotation to 45 deg with zero net force,
+                          then 600 nm of lift, to detachment): CPU seconds, tangents, and the change of P_max,
+                          Delta u_z and Delta Pi_ext.
+  peer-medium-iteration   per Newton iteration on the peer's comparison scene (medium, Q1C1, 20 nm lift from
+                          theta_s): before = the FEniCSx peer of ../shared/peers (MUMPS Cholesky every iteration),
+                          after = ours with today's defaults; also the whole scene's Newton time of each. Needs
+                          python3-dolfinx; skipped with a note without it.
+
+    benchmarks/speedup.py [--cases fine-newton-iteration medium-pull-off-45 peer-medium-iteration] [--work DIR]
+                          [--docs]
+
+Run it on a quiet machine (nothing else on the two cores): it takes about an hour, most of it the medium pull-off
+before the change.
+"""
+import argparse
+import csv
+import os
+import re
+import resource
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, 'scripts'))
+sys.path.insert(0, os.path.join(ROOT, 'benchmarks'))
+from curves import pull_off_summary  # noqa: E402
+from scenes import benchmark_scene  # noqa: E402
+import peer_iteration  # noqa: E402
+
+APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula'))
+SOLID = os.path.join(ROOT, 'build', 'benchmarks', 'solid_benchmark')
+ENVIRONMENT = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
+MPI = ['mpiexec', '--allow-run-as-root', '-np', '2']
+OLD_SOLID = ['refactor=lag', 'lag=4', 'low-rank=0']
+OLD_SCENE = {'Linear Solver': {'refactor': 'lag', 'lag': 4, 'MUMPS': {'low rank tolerance': 0.0}},
+             'Nonlinear Solver': {'non-contracting iterations': 0}}
+QUANTITIES = ('P_max_nN', 'delta_u_z_nm', 'delta_Pi_ext_1e-18J')
+
+
+def solid(options):
+    result = subprocess.run(MPI + [SOLID, 'fine', 'mumps', '1'] + options, env=ENVIRONMENT, capture_output=True,
+                            text=True)
+    if result.returncode != 0:
+        sys.exit(f'solid_benchmark {options}: exit {result.returncode}\n{result.stderr[-2000:]}')
+    header, values = result.stdout.strip().splitlines()[-2:]
+    row = dict(zip(header.split(','), values.split(',')))
+    print(f"solid_benchmark fine {' '.join(options) or 'defaults'}: {float(row['newton_s_per_iteration']):.2f} s per "
+          f"iteration, {row['factorizations']} factorizations, {row['factorization_MB_all_ranks']} MB", flush=True)
+    return row
+
+
+def fine_newton_iteration():
+    fresh = solid(['refactor=lag', 'lag=0', 'low-rank=0'])
+    before = solid(OLD_SOLID)
+    after = solid([])
+    def row(case, old):
+        b, a = float(old['newton_s_per_iteration']), float(after['newton_s_per_iteration'])
+        return dict(case=case, before_s=round(b, 3), after_s=round(a, 3), ratio=round(b / a, 2),
+                    max_result_change_pct='', before_counts=f"{old['newton_iterations']} iterations, "
+                    f"{old['factorizations']} factorizations, {old['factorization_MB_all_ranks']} MB",
+                    after_counts=f"{after['newton_iterations']} iterations, {after['factorizations']} "
+                    f"factorizations, {after['factorization_MB_all_ranks']} MB")
+    return [row('fine-newton-iteration', before), row('fine-newton-iteration-fresh-factors', fresh)]
+
+
+def pull_off(work, label, options):
+    directory = f'medium-45-{label}'
+    xml = os.path.join(work, directory + '.xml')
+    options = {k: dict(v) for k, v in options.items()}
+    open(xml, 'w').write(benchmark_scene(directory, mesh='medium', theta_y=45.0,
+                                         linear_solver=options.get('Linear Solver'),
+                                         newton=options.get('Nonlinear Solver')))
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    started = time.time()
+    with open(os.path.join(work, directory + '.log'), 'w') as log:
+        status = subprocess.call([APP, xml], cwd=work, stdout=log, stderr=subprocess.STDOUT, env=ENVIRONMENT)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if status != 0:
+        sys.exit(f'{directory}: exit {status} (see {directory}.log)')
+    text = open(os.path.join(work, directory + '.log')).read()
+    solver = re.search(r'^solver: (\d+) tangents', text, re.M)
+    summary = pull_off_summary(work, directory)
+    result = dict(cpu_s=after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime,
+                  wall_s=time.time() - started, tangents=int(solver.group(1)),
+                  failed=len(re.findall(r'failed \(|converged on another branch', text)),
+                  jumps=len(re.findall(r'^  jumped in', text, re.M)), **{q: summary[q] for q in QUANTITIES})
+    print(f"medium pull-off 45 deg, {label}: {result['cpu_s']:.0f} CPU s, {result['tangents']} tangents, "
+          f"P_max {result['P_max_nN']:.4f} nN", flush=True)
+    return result
+
+
+def medium_pull_off_45(work):
+    before = pull_off(work, 'before', OLD_SCENE)
+    after = pull_off(work, 'after', {})
+    change = max(abs(after[q] / before[q] - 1) * 100 for q in QUANTITIES)
+    counts = '{tangents} tangents, {failed} failed attempts, {jumps} jumps, P_max {P_max_nN:.4f} nN, Delta u_z ' \
+             '{delta_u_z_nm:.2f} nm, wall {wall_s:.0f} s'
+    return [dict(case='medium-pull-off-45', before_s=round(before['cpu_s'], 1), after_s=round(after['cpu_s'], 1),
+                 ratio=round(before['cpu_s'] / after['cpu_s'], 2), max_result_change_pct=round(change, 4),
+                 before_counts=counts.format(**before), after_counts=counts.format(**after))]
+
+
+def peer_medium_iteration(work):
+    if subprocess.run(['/usr/bin/python3', '-c', 'import dolfinx'], capture_output=True).returncode != 0:
+        print('python3-dolfinx is not installed: peer-medium-iteration skipped (apt-get install python3-dolfinx)')
+        return []
+    peer_iteration.VARIANTS['ours-default'] = None   # today's defaults (no Linear Solver entries)
+    ours = peer_iteration.run_ours(work, 'ours-default', 0)
+    peer = peer_iteration.run_peer(work, ours, 0)
+    change = abs(ours['P_z_final'] / peer['P_z_final'] - 1) * 100
+    return [dict(case='peer-medium-iteration', before_s=round(peer['per_iteration_s'], 3),
+                 after_s=round(ours['per_iteration_s'], 3),
+                 ratio=round(peer['per_iteration_s'] / ours['per_iteration_s'], 2),
+                 max_result_change_pct=round(change, 6),
+                 before_counts=f"peer: {peer['iterations']} iterations, "
+                               f"{peer['per_iteration_s'] * peer['iterations']:.1f} s in all",
+                 after_counts=f"ours: {ours['iterations']} iterations, "
+                              f"{ours['per_iteration_s'] * ours['iterations']:.1f} s in all")]
+
+
+def main():
+    cases = ['fine-newton-iteration', 'medium-pull-off-45', 'peer-medium-iteration']
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument('--cases', nargs='*', default=cases, choices=cases)
+    parser.add_argument('--work', default='speedup')
+    parser.add_argument('--docs', action='store_true')
+    arguments = parser.parse_args()
+    work = os.path.abspath(arguments.work)
+    os.makedirs(work, exist_ok=True)
+    rows = []
+    for case in arguments.cases:
+        if case == 'fine-newton-iteration':
+            rows += fine_newton_iteration()
+        elif case == 'medium-pull-off-45':
+            rows += medium_pull_off_45(work)
+        else:
+            rows += peer_medium_iteration(work)
+    print('\n| case | before [s] | after [s] | ratio | largest result change [%] | before | after |')
+    print('|---|---|---|---|---|---|---|')
+    for r in rows:
+        print(f"| {r['case']} | {r['before_s']} | {r['after_s']} | {r['ratio']} | {r['max_result_change_pct']} | "
+              f"{r['before_counts']} | {r['after_counts']} |")
+    if arguments.docs:
+        with open(os.path.join(ROOT, 'docs', 'speedup.csv'), 'w', newline='') as out:
+            writer = csv.DictWriter(out, fieldnames=list(rows[0]))
+            writer.writeheader()
+            writer.writerows(rows)
+
+
+if __name__ == '__main__':
+    main()

@@ -1,0 +1,194 @@
+// The MUMPS wrapper on systems with known answers: a solve against a known solution, the inertia of a shifted
+// Laplacian against its exact eigenvalues, reuse of the analysis, orderings, low-rank factors, and the cost rule
+// that decides when a kept factorization is replaced.
+#include "linear_solver.hpp"
+#include "mumps_solver.hpp"
+
+#include <Teuchos_DefaultComm.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace {
+
+using namespace spatula;
+using discretization::CrsMatrix;
+using discretization::GlobalOrdinal;
+using discretization::Map;
+using discretization::Vector;
+
+constexpr double pi = 3.14159265358979323846;
+
+// tridiag(-1, 2, -1) - shift I on n unknowns spread over the ranks; eigenvalues 2 - 2 cos(k pi / (n + 1)) - shift.
+Teuchos::RCP<CrsMatrix> shifted_laplacian(GlobalOrdinal n, double shift)
+{
+  const auto comm = Teuchos::DefaultComm<int>::getComm();
+  auto map = Teuchos::rcp(new Map(n, 0, comm));
+  auto matrix = Teuchos::rcp(new CrsMatrix(map, 3));
+  for (std::size_t local = 0; local < map->getNodeNumElements(); ++local) {
+    const GlobalOrdinal row = map->getGlobalElement(local);
+    std::vector<GlobalOrdinal> columns{row};
+    std::vector<double> values{2.0 - shift};
+    if (row > 0) columns.push_back(row - 1), values.push_back(-1.0);
+    if (row < n - 1) columns.push_back(row + 1), values.push_back(-1.0);
+    matrix->insertGlobalValues(row, Teuchos::ArrayView<const GlobalOrdinal>(columns),
+                               Teuchos::ArrayView<const double>(values));
+  }
+  matrix->fillComplete();
+  return matrix;
+}
+
+int eigenvalues_below(GlobalOrdinal n, double shift)
+{
+  int count = 0;
+  for (GlobalOrdinal k = 1; k <= n; ++k) count += 2.0 - 2.0 * std::cos(k * pi / (n + 1)) < shift;
+  return count;
+}
+
+// |A x - b| / |b| for the solution x of A x = b by the factors, with b = A (1, 2, 3, ...).
+double relative_residual(const CrsMatrix& matrix, solvers::MumpsSolver& mumps, double* error = nullptr)
+{
+  const auto map = matrix.getRowMap();
+  Vector exact(map), b(map), x(map), check(map);
+  for (std::size_t local = 0; local < map->getNodeNumElements(); ++local)
+    exact.replaceLocalValue(local, 1.0 + map->getGlobalElement(local));
+  matrix.apply(exact, b);
+  mumps.apply(b, x);
+  matrix.apply(x, check);
+  check.update(-1.0, b, 1.0);
+  if (error) {
+    Vector difference(exact, Teuchos::Copy);
+    difference.update(-1.0, x, 1.0);
+    *error = difference.normInf() / exact.normInf();
+  }
+  return check.norm2() / b.norm2();
+}
+
+TEST(Mumps, SolvesASymmetricPositiveDefiniteSystem)
+{
+  const auto matrix = shifted_laplacian(200, 0.0);
+  solvers::MumpsSolver mumps(matrix->getRowMap(), solvers::MumpsParameters{});
+  mumps.factor(*matrix);
+  double error = 0.0;
+  EXPECT_LT(relative_residual(*matrix, mumps, &error), 1e-13);
+  EXPECT_LT(error, 1e-9);   // condition number ~ 1.6e4
+  EXPECT_EQ(mumps.statistics().negative_pivots, 0);
+}
+
+TEST(Mumps, InertiaOfAnIndefiniteSystemIsItsCountOfNegativeEigenvalues)
+{
+  const GlobalOrdinal n = 200;
+  for (double shift : {0.05, 0.5, 1.3, 3.9}) {   // none within 1e-4 of an eigenvalue
+    const auto matrix = shifted_laplacian(n, shift);
+    solvers::MumpsSolver mumps(matrix->getRowMap(), solvers::MumpsParameters{});
+    mumps.factor(*matrix);
+    EXPECT_EQ(mumps.statistics().negative_pivots, eigenvalues_below(n, shift)) << "shift " << shift;
+    EXPECT_LT(relative_residual(*matrix, mumps), 1e-10) << "shift " << shift;
+  }
+  EXPECT_EQ(eigenvalues_below(n, 0.5), 46);   // the counting itself: 2 - 2 cos(k pi / 201) < 0.5 for k <= 46
+}
+
+TEST(Mumps, LuModeSolvesTheIndefiniteSystemToo)
+{
+  const auto matrix = shifted_laplacian(120, 1.3);
+  solvers::MumpsParameters parameters;
+  parameters.symmetric = false;
+  solvers::MumpsSolver mumps(matrix->getRowMap(), parameters);
+  mumps.factor(*matrix);
+  EXPECT_LT(relative_residual(*matrix, mumps), 1e-10);
+  EXPECT_EQ(mumps.statistics().negative_pivots, -1);   // unknown in LU mode
+}
+
+TEST(Mumps, OneAnalysisServesEveryFactorizationOfThePattern)
+{
+  solvers::MumpsSolver mumps(shifted_laplacian(150, 0.0)->getRowMap(), solvers::MumpsParameters{});
+  for (double shift : {0.0, 0.2, 0.7}) {
+    const auto matrix = shifted_laplacian(150, shift);
+    mumps.factor(*matrix);
+    EXPECT_LT(relative_residual(*matrix, mumps), 1e-10);
+  }
+  EXPECT_EQ(mumps.statistics().analyses, 1);
+  EXPECT_EQ(mumps.statistics().factorizations, 3);
+  EXPECT_EQ(mumps.statistics().solves, 3);
+  EXPECT_GT(mumps.statistics().factorization_flops, 0.0);
+  EXPECT_GE(mumps.statistics().factor_entries, 150.0);   // at least the diagonal
+}
+
+TEST(Mumps, AnOrderingIsUsedAsAskedOrRefusedByName)
+{
+  const auto matrix = shifted_laplacian(100, 0.0);
+  for (auto ordering : {solvers::MumpsOrdering::amd, solvers::MumpsOrdering::pord}) {
+    solvers::MumpsParameters parameters;
+    parameters.ordering = ordering;
+    solvers::MumpsSolver mumps(matrix->getRowMap(), parameters);
+    mumps.factor(*matrix);
+    EXPECT_EQ(mumps.statistics().ordering_used, solvers::mumps_ordering_names()[static_cast<int>(ordering)]);
+    EXPECT_LT(relative_residual(*matrix, mumps), 1e-12);
+  }
+  // METIS is not in Debian's MUMPS: the analysis names the key instead of silently ordering with another.
+  solvers::MumpsParameters parameters;
+  parameters.ordering = solvers::MumpsOrdering::metis;
+  solvers::MumpsSolver mumps(matrix->getRowMap(), parameters);
+  try {
+    mumps.factor(*matrix);
+    EXPECT_EQ(mumps.statistics().ordering_used, "METIS");   // a MUMPS built with METIS
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("'Linear Solver/MUMPS/ordering' = METIS"), std::string::npos)
+        << error.what();
+  }
+}
+
+TEST(Mumps, LowRankFactorsAreAnApproximateInverse)
+{
+  const auto matrix = shifted_laplacian(400, 0.0);
+  solvers::MumpsParameters parameters;
+  parameters.low_rank_tolerance = 1e-3;
+  parameters.low_rank_from = 0;
+  solvers::MumpsSolver mumps(matrix->getRowMap(), parameters);
+  mumps.factor(*matrix);
+  EXPECT_LT(relative_residual(*matrix, mumps), 1e-2);
+  EXPECT_EQ(mumps.statistics().negative_pivots, 0);
+  // Below 'low rank from' unknowns the factors are exact whatever the tolerance.
+  parameters.low_rank_from = 401;
+  solvers::MumpsSolver exact(matrix->getRowMap(), parameters);
+  exact.factor(*matrix);
+  EXPECT_LT(relative_residual(*matrix, exact), 1e-13);
+}
+
+TEST(RefactorCost, KeepsTheFactorsWhileTheLastTangentCostsLessThanTheCycleAverage)
+{
+  solvers::RefactorCost cost;
+  EXPECT_FALSE(cost.keep(0.0));   // nothing factored yet
+  cost.factored(10.0);            // a factorization of 10 s, its own tangent's solves took 1 s
+  EXPECT_TRUE(cost.keep(1.0));    // 1 <= (10 + 1) / 1
+  EXPECT_EQ(cost.tangents(), 2);
+  EXPECT_TRUE(cost.keep(3.0));    // 3 <= (11 + 3) / 2 = 7
+  EXPECT_TRUE(cost.keep(4.0));    // 4 <= 18 / 3 = 6
+  EXPECT_FALSE(cost.keep(7.0));   // 7 > 25 / 4: one more tangent would raise the average cost per tangent
+  // The same solve times after a cheap and a dear factorization: the cheap one is renewed sooner.
+  for (double factorization_seconds : {2.0, 10.0}) {
+    cost.factored(factorization_seconds);
+    EXPECT_TRUE(cost.keep(0.5));   // a fresh factorization always serves a second tangent
+    EXPECT_TRUE(cost.keep(2.0));   // 2 <= (F + 2.5) / 2
+    EXPECT_EQ(cost.keep(2.5), factorization_seconds > 2.0);   // 2.5 against (F + 5) / 3: 2.33 or 5
+  }
+}
+
+TEST(RefactorCost, ServesMoreTangentsWhenTheFactorizationIsDearer)
+{
+  // Solves that cost 1 s more with every tangent the factors age: the cycle length grows like the square root of
+  // the factorization's cost F (the average (F + k (k + 1) / 2) / k is least at k = sqrt(2 F)); the rule ends the
+  // cycle one tangent after the optimum, as it sees a tangent's cost only after paying it.
+  const auto cycle = [](double factorization_seconds) {
+    solvers::RefactorCost cost;
+    cost.factored(factorization_seconds);
+    int tangents = 1;
+    while (cost.keep(tangents)) ++tangents;
+    return tangents;
+  };
+  EXPECT_EQ(cycle(2.0), 3);     // optimum 2
+  EXPECT_EQ(cycle(18.0), 7);    // optimum 6
+  EXPECT_EQ(cycle(200.0), 21);  // optimum 20
+}
+
+}  // namespace
