@@ -23,7 +23,8 @@ iterations' = 0; 'after' is today's defaults):
                           [--docs]
 
 Run it on a quiet machine (nothing else on the two cores): it takes about an hour, most of it the medium pull-off
-before the change.
+before the change. With --docs the rows of the cases run replace theirs in docs/speedup.csv (each row carries the
+date it was measured); the before/after pair of each row always comes from one run.
 """
 import argparse
 import csv
@@ -132,6 +133,10 @@ def peer_medium_iteration(work):
                               f"{ours['per_iteration_s'] * ours['iterations']:.1f} s in all")]
 
 
+CASE_ROWS = ['medium-pull-off-45', 'fine-newton-iteration', 'fine-newton-iteration-fresh-factors',
+             'peer-medium-iteration']
+
+
 def main():
     cases = ['fine-newton-iteration', 'medium-pull-off-45', 'peer-medium-iteration']
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -154,11 +159,19 @@ def main():
     for r in rows:
         print(f"| {r['case']} | {r['before_s']} | {r['after_s']} | {r['ratio']} | {r['max_result_change_pct']} | "
               f"{r['before_counts']} | {r['after_counts']} |")
-    if arguments.docs:
-        with open(os.path.join(ROOT, 'docs', 'speedup.csv'), 'w', newline='') as out:
+    if arguments.docs:   # the cases run replace their rows; rows of cases not run this time are kept
+        path = os.path.join(ROOT, 'docs', 'speedup.csv')
+        today = time.strftime('%Y-%m-%d')
+        for r in rows:
+            r['measured'] = today
+        kept = [r for r in (csv.DictReader(open(path)) if os.path.exists(path) else [])
+                if r['case'] not in {n['case'] for n in rows}]
+        order = {case: k for k, case in enumerate(CASE_ROWS)}
+        merged = sorted(kept + rows, key=lambda r: order.get(r['case'], len(order)))
+        with open(path, 'w', newline='') as out:
             writer = csv.DictWriter(out, fieldnames=list(rows[0]))
             writer.writeheader()
-            writer.writerows(rows)
+            writer.writerows(merged)
 
 
 if __name__ == '__main__':

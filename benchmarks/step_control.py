@@ -14,7 +14,10 @@ after 'maximum iterations' = 12; NOX's scaled norms):
   cost-refactor           after-failure with 'Linear Solver/refactor' = cost (measured time decides refactoring)
   new                     today's defaults (as the parameter list declares them)
 (A 'resume' rule, run 2026-12-02 and since removed, restarted the increments at half the failed one once the path
-had passed a failed load: 1,256 -> 1,231 tangents at 45 deg, 1,185 -> 1,215 at 60 deg, CPU 0.98 / 1.07: no gain.)
+had passed a failed load: 1,256 -> 1,231 tangents at 45 deg, 1,185 -> 1,215 at 60 deg, CPU 0.98 / 1.07: no gain.
+A fold predictor, run the same day and since removed, extrapolated 1 / |dx/dload|^2 of the last two steps to zero
+(exact for a quadratic fold) and halved the increments towards the predicted fold: 1,255 -> 1,247 tangents at
+45 deg, failed attempts 100 -> 93: the spatula's folds (a contact zone letting go) give no warning two steps ahead.)
 It records CPU seconds, tangents, Newton iterations, failed step attempts, and the change of P_max, Delta u_z and
 Delta Pi_ext against the base. Runs one after another (a quiet machine: CPU times are compared):
 

@@ -336,8 +336,12 @@ std::variant<int, std::string> LoadPath::descend(Vector& x)
           << std::setprecision(8) << energy << std::setprecision(2) << "\n";
   };
   // After Newton failed to confirm a state with a small gradient (just past a fold the gradient is small but no
-  // equilibrium is near), the descent goes on without that shortcut.
-  bool small_gradient_ends = true;
+  // equilibrium is near), the descent goes on and asks Newton again only at a gradient a thousand times smaller
+  // (the minimum it then reaches can be very flat: a snapped-off face far out in the Lennard-Jones tail), up to
+  // three times in all.
+  double small_gradient = 1e-3;   // |f| [nN]
+  int confirmations = 0;
+  double residual_at_end = 0.0;
   auto confirmed = system.create_vector();
   for (;;) {
     for (; iteration < jump_.maximum_iterations; ++iteration) {
@@ -365,7 +369,8 @@ std::variant<int, std::string> LoadPath::descend(Vector& x)
       // alone cannot resolve the last digits (its changes fall below its rounding), the gradient can. A small gradient
       // found with a shift is tested once without it: is the unshifted tangent positive definite there? (Without this
       // a descent that has reached the minimum keeps raising the shift, since no step can lower Pi any more.)
-      if (small_gradient_ends && residual < 1e-3 && (eta == 0.0 || !unshifted_tried)) {
+      residual_at_end = residual;
+      if (residual < small_gradient && (eta == 0.0 || !unshifted_tried)) {
         row(negative, residual, 0.0, energy);
         if (eta == 0.0) break;
         unshifted_tried = true;
@@ -424,9 +429,9 @@ std::variant<int, std::string> LoadPath::descend(Vector& x)
       x.assign(*confirmed);
       return iteration + (plain.iterations.empty() ? 0 : plain.iterations.back().iteration);
     }
-    if (!small_gradient_ends)
+    if (++confirmations == 3)
       return "Newton did not confirm the state the energy descent reached (" + plain.failure + ")";
-    small_gradient_ends = false;
+    small_gradient = 1e-3 * std::min(small_gradient, residual_at_end);
     if (tables_) table << "  descent  (Newton did not confirm: " << plain.failure << "; descending further)\n";
   }
 }
