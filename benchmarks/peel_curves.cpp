@@ -1,4 +1,4 @@
-// Peel force curves of Kendall's strip (contact/strip_peel.hpp) with Q1C1 and Q1C2 on the same mesh, for the docs.
+// Peel force curves of Kendall's strip (peel/strip_peel.hpp) with Q1C1 and Q1C2 on the same mesh, for the docs.
 //
 //   peel_curves <angle deg> <pull nm> <window start nm> <elements along> <output.csv>
 //
@@ -22,7 +22,7 @@ int main(int argc, char** argv)
     std::cerr << "usage: peel_curves <angle> <pull> <window start> <elements along> <output.csv>\n";
     return 2;
   }
-  contact::StripPeelParameters parameters;
+  peel::StripPeelParameters parameters;
   parameters.angle_degrees = std::atof(argv[1]);
   parameters.pull = std::atof(argv[2]);
   parameters.window_start = std::atof(argv[3]);
@@ -33,7 +33,7 @@ int main(int argc, char** argv)
     parameters.enrichment = enrichment;
     const char* name = enrichment == discretization::Enrichment::q1c1 ? "Q1C1" : "Q1C2";
     const auto start = std::chrono::steady_clock::now();
-    const auto result = contact::peel_strip(parameters, comm);
+    const auto result = peel::peel_strip(parameters, comm);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     for (const auto& [pull, force] : result.curve) out << name << "," << pull << "," << force << "\n";
     if (comm->getRank() == 0)

@@ -121,7 +121,13 @@ int main(int argc, char** argv)
   auto system = Teuchos::rcp(new discretization::DiscreteSystem(
       mesh, partition, discretization::spatula_constraints(mesh, {p1.x, p1.y, p1.z}, true), {}, comm));
   solvers::LinearSolverParameters linear_parameters;
-  linear_parameters.type = solver_type;
+  const auto& solver_names = solvers::linear_solver_names();
+  const auto named = std::find(solver_names.begin(), solver_names.end(), solver_type);
+  if (named == solver_names.end()) {
+    std::cerr << "solid_benchmark: unknown linear solver '" << solver_type << "'\n";
+    return 2;
+  }
+  linear_parameters.type = static_cast<solvers::LinearSolverType>(named - solver_names.begin());
   std::string variant;   // the MUMPS options given, for the CSV
   bool factor_only = false;
   for (int a = 4; a < argc; ++a) {

@@ -76,7 +76,8 @@ def scene_file(work, level, scene):
     open(path, 'w').write(text)
     return path
 
-# The paper's values this project may use (MODEL.md section 8); the rest are held out.
+# The paper's values this project may use (its Tables 4, 5 and 6 and Pi_c0 of Sec. 3; docs/validation.md); the rest
+# are held out.
 PAPER_TABLE4 = {30: (0.237, 0.222, 0.013), '31-': (0.255, 0.232, 0.021), '31+': (0.255, 0.182, 0.071),
                 60: (0.689, 0.395, 0.291), 90: (1.088, 0.545, 0.540), 120: (1.455, 0.728, 0.724),
                 128: (1.551, 0.738, 0.811)}

@@ -78,7 +78,7 @@ void LoadingParameters::declare(Teuchos::ParameterList& loading)
 LoadingParameters LoadingParameters::from(const Teuchos::ParameterList& loading)
 {
   LoadingParameters p;
-  p.type = loading.get<std::string>("type");
+  p.type = parameters::choice<LoadingType>(loading, "type", loading_types());
   p.theta_y = loading.get<double>("theta_y");
   p.final_lift = loading.get<double>("final lift");
   p.free_lift = loading.get<bool>("free lift during rotation");
@@ -87,7 +87,8 @@ LoadingParameters LoadingParameters::from(const Teuchos::ParameterList& loading)
   p.hold_contact_surface = loading.get<bool>("hold contact surface");
   p.rotation_steps = analysis::StepParameters::from(loading.sublist("Rotation Steps"), "Loading/Rotation Steps");
   p.lift_steps = analysis::StepParameters::from(loading.sublist("Lift Steps"), "Loading/Lift Steps");
-  p.past_instabilities = loading.get<std::string>("past instabilities");
+  p.past_instabilities =
+      parameters::choice<analysis::LoadPath::PastFolds>(loading, "past instabilities", instability_methods());
   p.restart_file = loading.get<std::string>("restart file");
   p.restart_theta_y = loading.get<double>("restart theta_y");
   p.restart_from_last_state = loading.get<std::string>("restart from") == "last state";

@@ -1,6 +1,9 @@
 #pragma once
 // What a scene does with the spatula: mesh only, peel by rotating the end face, or pull off by lifting it at a
-// fixed inclination (after rotating there). A registry maps each "Loading/type" name to its run.
+// fixed inclination (after rotating there). "Loading/type" is checked against the fixed list loading_types()
+// ("none", "rotation", "lift"); there is no registry: main.cpp runs no load path for "none", and run_simulation
+// (simulation.cpp) rotates to theta_y for both other types (unless it restarts from a state already in the lift),
+// then raises the face if the type is "lift".
 #include "load_stepping.hpp"
 
 #include <Teuchos_ParameterList.hpp>
@@ -10,8 +13,10 @@
 
 namespace spatula::app {
 
+enum class LoadingType { none, rotation, lift };   // in the order of loading_types()
+
 struct LoadingParameters {
-  std::string type = "none";
+  LoadingType type = LoadingType::none;
   double theta_y = 30.0;          // rotation: final inclination; lift: the inclination held [deg]
   double final_lift = 100.0;      // lift: u_z of the face centre at the end, from the undeformed state [nm]
   bool lift_relative = false;     // final lift counted from where the lift starts (a pre-rotated state)
@@ -19,7 +24,7 @@ struct LoadingParameters {
   bool free_slide = false;        // while lifting: zero net X force on the face (else u_x held)
   bool hold_contact_surface = false;   // the pad's bottom held at Z = 0 (a check without adhesion)
   analysis::StepParameters rotation_steps, lift_steps;
-  std::string past_instabilities = "jump";   // a name in instability_methods()
+  analysis::LoadPath::PastFolds past_instabilities = analysis::LoadPath::PastFolds::jump;
   std::string restart_file;               // start from a checkpoint of an earlier run (empty: undeformed)
   double restart_theta_y = 0.0;           // which one [deg]
   bool restart_from_last_state = false;   // the last converged state of a stopped run instead
@@ -33,6 +38,6 @@ struct LoadingParameters {
 };
 
 const std::vector<std::string>& loading_types();
-const std::vector<std::string>& instability_methods();   // "stop", "jump", "arc-length"
+const std::vector<std::string>& instability_methods();   // "stop", "jump", "arc-length": LoadPath::PastFolds
 
 }  // namespace spatula::app

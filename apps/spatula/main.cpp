@@ -130,8 +130,8 @@ void write_failure_note(const spatula::io::OutputDirectory& directory, const spa
   const auto& failure = stop.failure;
   note << "spatula stopped before the end of its load path (exit code " << exit_code << ").\n"
        << "why: " << failure.reason << "\n"
-       << "where: step " << failure.step << ", " << stop.stage << ", load " << failure.load
-       << (stop.stage == "lift" ? " nm (u_z)" : " (deg)");
+       << "where: step " << failure.step << ", " << spatula::app::stage_name(stop.stage) << ", load " << failure.load
+       << (stop.stage == spatula::discretization::Master::lift ? " nm (u_z)" : " (deg)");
   if (failure.smallest_increment > 0.0)
     note << ", not reached after cutting the increment to " << failure.smallest_increment;
   note << "\nresults up to the last converged state: curve.csv, mesh_states.xmf (this directory)\n";
@@ -190,10 +190,10 @@ int main(int argc, char** argv)
       directory = std::make_unique<io::OutputDirectory>(scene.output.directory);
       parameters::write_xml_file(scene.validated, directory->file("scene.xml"));
       write_summary_files(*directory, summary, *run.shape);
-      if (scene.output.write_mesh || scene.loading.type != "none")
+      if (scene.output.write_mesh || scene.loading.type != app::LoadingType::none)
         fields = std::make_unique<io::XdmfOutput>(directory->file(""), "mesh", run.mesh, run.partition);
     }, true);
-    if (scene.loading.type != "none") {
+    if (scene.loading.type != app::LoadingType::none) {
       const auto stop =
           app::run_simulation(scene, *run.shape, run.mesh, run.partition, comm, directory.get(), fields.get(), out);
       if (stop) {
@@ -203,7 +203,7 @@ int main(int argc, char** argv)
           write_failure_note(*directory, *stop, exit_code);
           directory->abandon();
           std::cerr << "spatula: " << (stop->signal ? "interrupted" : "solver failure") << " at step "
-                    << stop->failure.step << ", " << stop->stage << " = " << stop->failure.load << ": "
+                    << stop->failure.step << ", " << app::stage_name(stop->stage) << " = " << stop->failure.load << ": "
                     << stop->failure.reason << "\nspatula: results up to the last converged state, a checkpoint "
                     << "to go on from and FAILURE.txt (how) are in " << directory->incomplete_path() << "/\n";
         }

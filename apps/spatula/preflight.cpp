@@ -48,7 +48,7 @@ struct MemoryModel {
 
 double peak_bytes(const Scene& scene, double unknowns)
 {
-  return scene.linear_solver.type == "mumps" ? MemoryModel::direct(unknowns)
+  return scene.linear_solver.type == solvers::LinearSolverType::mumps ? MemoryModel::direct(unknowns)
                                              : MemoryModel::iterative(unknowns, scene.linear_solver.fill_level);
 }
 
@@ -161,14 +161,15 @@ void check_memory(const Scene& scene, const MemoryEstimate& estimate)
   std::ostringstream message;
   message << "the mesh ('Mesh/level' = '" << m.level << "', 'Mesh/refinement factor' = " << m.refinement_factor
           << ", 'Mesh/layers' = " << m.layers << ") has about " << estimate.unknowns << " unknowns and needs about "
-          << gigabytes(estimate.bytes) << " with 'Linear Solver/type' = '" << scene.linear_solver.type << "'; "
+          << gigabytes(estimate.bytes) << " with 'Linear Solver/type' = '"
+          << solvers::linear_solver_names()[static_cast<int>(scene.linear_solver.type)] << "'; "
           << gigabytes(estimate.available_bytes) << " available. ";
   int fits = 0;
   for (int r = 1; r < m.refinement_factor; ++r)
     if (peak_bytes(scene, 3.0 * estimate.nodes_at(r)) <= usable * estimate.available_bytes) fits = r;
   if (fits > 0) message << "Allowed here: 'Mesh/refinement factor' <= " << fits << "";
   else message << "Use a coarser 'Mesh/level' or fewer 'Mesh/layers'";
-  if (scene.linear_solver.type == "mumps") {
+  if (scene.linear_solver.type == solvers::LinearSolverType::mumps) {
     const double iterative = MemoryModel::iterative(double(estimate.unknowns), scene.linear_solver.fill_level);
     message << ", or the iterative solver 'Linear Solver/type' = 'gmres-ilu' (about " << gigabytes(iterative)
             << (iterative <= usable * estimate.available_bytes ? ", fits" : ", does not fit either") << ")";

@@ -62,6 +62,11 @@ private:
 
 }  // namespace
 
+const char* stage_name(discretization::Master stage)
+{
+  return stage == discretization::Master::rotation ? "rotation" : stage == discretization::Master::lift ? "lift" : "slide";
+}
+
 std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaShape& shape,
                                                 const mesh::HexMesh& mesh, const mesh::Partition& partition,
                                                 Teuchos::RCP<const Teuchos::Comm<int>> comm,
@@ -81,8 +86,10 @@ std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaSh
   auto model = Teuchos::rcp(new solvers::SpatulaModel(system, linear.lows_factory()));
   solvers::NewtonSolver newton(model, scene.newton, linear);
   analysis::LoadPath path(*model, newton, root ? &out : nullptr, scene.output.convergence_tables);
-  if (scene.loading.past_instabilities == "jump") path.set_past_folds(analysis::LoadPath::PastFolds::jump);
-  if (scene.loading.past_instabilities == "arc-length") path.enable_arc_length(scene.loading.arc_length_steps);
+  if (scene.loading.past_instabilities == analysis::LoadPath::PastFolds::arc_length)
+    path.enable_arc_length(scene.loading.arc_length_steps);
+  else
+    path.set_past_folds(scene.loading.past_instabilities);
 
   const double theta_s = shape.theta_s(), young = scene.material.young;
   // Pi_c0 = A_c w_adh of the full spatula, with A_c the meshed contact area.
@@ -96,7 +103,7 @@ std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaSh
   jump.step_balance_tolerance = options.contact ? scene.loading.step_balance_tolerance * reference_energy / 2.0 : 0.0;
   path.set_jump_parameters(jump);
   std::unique_ptr<CurveWriter> curve;
-  const char* stage = "rotation";
+  discretization::Master stage = discretization::Master::rotation;
   auto write_fields = [&](const discretization::Vector& x, double time) {
     io::FieldState state;
     state.time = time;
@@ -110,10 +117,10 @@ std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaSh
   bool balance_warned = false;
   auto on_point = [&](const analysis::LoadPoint& p, const discretization::Vector& x) {
     if (root) {
-      curve->write(p, stage, theta_s);
+      curve->write(p, stage_name(stage), theta_s);
       const std::ios_base::fmtflags flags = out.flags();
       const std::streamsize precision = out.precision();
-      out << "step " << std::setw(4) << p.step << "  " << stage << "  theta_y " << std::fixed << std::setprecision(3)
+      out << "step " << std::setw(4) << p.step << "  " << stage_name(stage) << "  theta_y " << std::fixed << std::setprecision(3)
           << std::setw(8) << (theta_s + p.rotation) / degree << " deg  u_z " << std::setw(9) << p.lift
           << " nm  M_y " << std::setprecision(4) << std::setw(10) << 2 * p.moment << " nN nm  P_z " << std::setw(9)
           << 2 * p.force << " nN  Pi_int " << std::setw(9) << curve->internal(p);
@@ -136,7 +143,7 @@ std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaSh
     }
     const int interval = scene.output.field_interval;
     if (interval > 0 && p.step % interval == 0)
-      write_fields(x, std::string(stage) == "rotation" ? (theta_s + p.rotation) / degree : p.lift);
+      write_fields(x, stage == discretization::Master::rotation ? (theta_s + p.rotation) / degree : p.lift);
     stop_if_interrupted(*comm);   // a signal stops the run here, at a converged state, on every rank
   };
 
@@ -151,7 +158,7 @@ std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaSh
     path.set_detachment_test([&](const analysis::LoadPoint& p) {
       peak_moment = std::max(peak_moment, p.moment);
       peak_force = std::max(peak_force, p.force);
-      const bool collapsed = std::string(stage) == "rotation" ? p.moment < 0.01 * peak_moment
+      const bool collapsed = stage == discretization::Master::rotation ? p.moment < 0.01 * peak_moment
                                                                : p.force < 0.01 * peak_force;
       return collapsed && released_fraction(p) > 0.5;
     });
@@ -162,7 +169,7 @@ std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaSh
   // On a rough substrate the pad starts pressed onto it: every node column is shifted down by the depth of the
   // surface below it (tapering to nothing along the first 100 nm of the shaft), then equilibrium is found.
   const auto& adhesion = scene.adhesion.settings;
-  if (options.contact && adhesion.substrate == "rough" && adhesion.conform && loading.restart_file.empty()) {
+  if (options.contact && adhesion.substrate == contact::SubstrateKind::rough && adhesion.conform && loading.restart_file.empty()) {
     std::vector<double> u(3 * mesh.node_count(), 0.0);
     const double top = adhesion.rough.base + adhesion.rough.z0;
     for (std::int64_t n = 0; n < mesh.node_count(); ++n) {
@@ -175,7 +182,11 @@ std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaSh
     auto guess = system->create_vector();
     system->set_displacements(*guess, u);
     const auto failure = path.equilibrate(*guess, LoadPath::spatula_control(Master::rotation, loading.free_lift));
-    if (failure) return Stop{*failure, 0, false, "rough substrate contact"};
+    if (failure) {   // before any load: the stage is the rotation's start, the reason says what failed
+      auto pressing = *failure;
+      pressing.reason = "pressing the pad onto the rough substrate: " + pressing.reason;
+      return Stop{pressing, 0, false, Master::rotation};
+    }
     if (root) out << "pad pressed onto the rough substrate (z0 = " << adhesion.rough.z0 << " nm): equilibrium found\n";
     initial_contact = path.last().contact_energy;   // the energies count from this state
     initial_internal = path.last().internal_energy;
@@ -189,13 +200,13 @@ std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaSh
     const auto history = read_checkpoint(scene, *system, *x, path_stage);
     if (adhesion.anchor_at_restart) system->set_contact_anchors(*x);   // r_a = 0 here: the same energy and forces
     path.restart(*x, history);
-    if (path_stage.lifting) stage = "lift";
+    if (path_stage.lifting) stage = discretization::Master::lift;
     if (root)
       out << "restart from '" << restart_label(loading) << "' of " << loading.restart_file << " (step "
           << history.step << ", u_z " << history.lift << " nm" << (path_stage.lifting ? ", in the lift" : "") << ")"
           << (adhesion.anchor_at_restart ? "; stiction anchors set at this state" : "") << "\n";
   }
-  if (root) curve->write(path.last(), stage, theta_s);
+  if (root) curve->write(path.last(), stage_name(stage), theta_s);
   write_fields(path.state(), (theta_s + path.last().rotation) / degree);
   // The rotation, stopping at every checkpoint inclination on the way, then the lift. A signal ends either at a
   // converged state (Interrupted, on every rank together).
@@ -218,8 +229,8 @@ std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaSh
         if (root) out << "checkpoint " << checkpoint_label(stop) << " written\n";
       }
     }
-    if (!failure && !path.detached() && loading.type == "lift") {
-      stage = "lift";
+    if (!failure && !path.detached() && loading.type == LoadingType::lift) {
+      stage = Master::lift;
       if (!path_stage.lifting) path_stage = PathStage{true, path.last().lift};
       const double target = loading.final_lift + (loading.lift_relative ? path_stage.lift_start : 0.0);
       auto control = LoadPath::spatula_control(Master::lift, false);
@@ -233,15 +244,15 @@ std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaSh
   // No equilibrium beyond a state where most of the pad has let go: that is the detachment.
   if (!interrupted_by && failure && options.contact && released_fraction(path.last()) > 0.5) {
     if (root)
-      out << "detachment: no equilibrium beyond " << stage << " = " << failure->load << " (" << failure->reason
+      out << "detachment: no equilibrium beyond " << stage_name(stage) << " = " << failure->load << " (" << failure->reason
           << ")\n";
     failure.reset();
   } else if (path.detached() && root) {
-    out << "detachment: the " << (std::string(stage) == "rotation" ? "moment" : "pull") << " has collapsed\n";
+    out << "detachment: the " << (stage == Master::rotation ? "moment" : "pull") << " has collapsed\n";
   }
   const auto& last = path.last();
   if (scene.output.field_interval == 0 || last.step % scene.output.field_interval != 0)
-    write_fields(path.state(), std::string(stage) == "rotation" ? (theta_s + last.rotation) / degree : last.lift);
+    write_fields(path.state(), stage == Master::rotation ? (theta_s + last.rotation) / degree : last.lift);
   if (root) {
     const auto& statistics = linear.mumps_statistics();
     out << "solver: " << model->counters().jacobians << " tangents, " << model->counters().residuals
@@ -260,7 +271,7 @@ std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaSh
   stop.signal = interrupted_by;
   stop.stage = stage;
   if (failure) stop.failure = *failure;
-  else stop.failure = analysis::Failure{last.step, std::string(stage) == "rotation" ? (theta_s + last.rotation) / degree
+  else stop.failure = analysis::Failure{last.step, stage == Master::rotation ? (theta_s + last.rotation) / degree
                                                                                      : last.lift, 0.0,
                                         Interrupted(interrupted_by).what()};
   write_checkpoint(directory ? directory->file("checkpoints.h5") : "", last_state_label, *system, path.state(), last,

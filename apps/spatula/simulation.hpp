@@ -19,8 +19,11 @@ struct Stop {
   analysis::Failure failure;
   int signal = 0;                    // the signal that interrupted the run, 0 for a failure
   bool checkpointed = false;         // 'last state' written to checkpoints.h5
-  std::string stage = "rotation";    // the stage it stopped in
+  discretization::Master stage = discretization::Master::rotation;   // the stage it stopped in
 };
+
+// "rotation", "lift" (curve.csv's stage column, messages).
+const char* stage_name(discretization::Master stage);
 
 // Returns why the run stopped, if the load path could not be followed to its end.
 std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaShape& shape,

@@ -66,7 +66,7 @@ AdhesionParameters AdhesionParameters::from(const Teuchos::ParameterList& adhesi
   p.enabled = law != "none";
   auto& s = p.settings;
   s.law = law;
-  s.substrate = adhesion.get<std::string>("substrate");
+  s.substrate = parameters::choice<SubstrateKind>(adhesion, "substrate", substrate_names());
   s.enrichment = discretization::enrichment_from_name(adhesion.get<std::string>("enrichment"));
   s.quadrature = adhesion.get<int>("quadrature");
   s.skip_distant_faces = adhesion.get<bool>("skip distant faces");

@@ -1,7 +1,7 @@
 #pragma once
 // The XML "Adhesion" sublist turned into a contact model: law (a registry name), substrate, enrichment, contact
 // quadrature, and the adhesion constants, given either physically (A_H, r0) or normalized (gamma_W, gamma_L with
-// R0 = 1 nm and W0 = E; MODEL.md section 3):
+// R0 = 1 nm and W0 = E; paper Sec. 3, eqs. 19-21):
 //
 //   gamma_L = R0 / r0,  gamma_W = E / w0,  w0 = A_H / (2 pi^2 r0^3)   =>  r0 = R0 / gamma_L, A_H = 2 pi^2 r0^3 E / gamma_W.
 //
@@ -16,9 +16,11 @@
 
 namespace spatula::contact {
 
+enum class SubstrateKind { flat, rough };   // in the order of substrate_names()
+
 struct AdhesionSettings {
   std::string law = "frictionless";
-  std::string substrate = "flat";
+  SubstrateKind substrate = SubstrateKind::flat;
   discretization::Enrichment enrichment = discretization::Enrichment::q1c2;
   int quadrature = 6;                  // Gauss points per direction on each contact face
   laws::LennardJones lennard_jones;    // A_H [nN nm], r0, r_reg, r_cut [nm]

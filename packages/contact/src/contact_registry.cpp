@@ -16,7 +16,7 @@ namespace {
 
 std::string describe(const AdhesionSettings& s)
 {
-  return s.law + " Lennard-Jones adhesion on a " + s.substrate + " substrate (A_H = " +
+  return s.law + " Lennard-Jones adhesion on a " + substrate_names()[static_cast<int>(s.substrate)] + " substrate (A_H = " +
          std::to_string(s.lennard_jones.hamaker * 10.0) + "e-19 J, r0 = " + std::to_string(s.lennard_jones.r0) +
          " nm, r_reg = " + std::to_string(s.lennard_jones.r_reg) + " nm, r_cut = " +
          std::to_string(s.lennard_jones.r_cut) + " nm), " +
@@ -31,7 +31,7 @@ std::string describe(const AdhesionSettings& s)
 std::shared_ptr<const discretization::ContactModel> frictionless(const AdhesionSettings& s)
 {
   const double w = s.lennard_jones.work_of_adhesion();
-  if (s.substrate == "flat") {
+  if (s.substrate == SubstrateKind::flat) {
     elements::FrictionlessIntegrand<laws::FlatSubstrate> integrand{s.lennard_jones, {s.substrate_height}};
     return std::make_shared<IntegrandContactModel<decltype(integrand)>>(integrand, s.quadrature, describe(s), w,
                                                                         s.skip_distant_faces);
@@ -43,9 +43,10 @@ std::shared_ptr<const discretization::ContactModel> frictionless(const AdhesionS
 
 std::shared_ptr<const discretization::ContactModel> stiction(const AdhesionSettings& s)
 {
-  if (s.substrate != "flat")
+  if (s.substrate != SubstrateKind::flat)
     throw parameters::InputError("parameter 'Adhesion/law' = 'stiction' needs 'Adhesion/substrate' = 'flat' (got '" +
-                                 s.substrate + "'): tangential travel on a curved substrate is not defined");
+                                 substrate_names()[static_cast<int>(s.substrate)] +
+                                 "'): tangential travel on a curved substrate is not defined");
   elements::StictionIntegrand integrand{{s.lennard_jones, s.substrate_height}};
   return std::make_shared<IntegrandContactModel<decltype(integrand)>>(integrand, s.quadrature, describe(s),
                                                                       s.lennard_jones.work_of_adhesion(),

@@ -270,7 +270,7 @@ TEST(ContactRegistry, ANewLawIsUsedByNameWithoutTouchingTheSolver)
 TEST(ContactRegistry, StictionOnARoughSubstrateIsAClearError)
 {
   auto s = settings(discretization::Enrichment::q1c2, "stiction");
-  s.substrate = "rough";
+  s.substrate = contact::SubstrateKind::rough;
   try {
     contact::make_contact_model(s);
     FAIL() << "accepted";

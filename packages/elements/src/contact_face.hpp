@@ -11,52 +11,13 @@
 // anchors A_k are the reference positions X_k unless a run re-anchors them at a deformed state.
 #include "gauss_rule.hpp"
 #include "lennard_jones.hpp"
+#include "quadrilateral_shape.hpp"
 #include "stiction.hpp"
 #include "substrate.hpp"
 
 #include <type_traits>
 
 namespace spatula::elements {
-
-// Bilinear face: corners (-1,-1), (1,-1), (1,1), (-1,1).
-struct Quad4Surface {
-  static constexpr int nodes = 4;
-  KOKKOS_INLINE_FUNCTION static void evaluate(double s, double t, double N[4], double dN[4][2])
-  {
-    const double cs[4] = {-1, 1, 1, -1}, ct[4] = {-1, -1, 1, 1};
-    for (int k = 0; k < 4; ++k) {
-      N[k] = 0.25 * (1 + cs[k] * s) * (1 + ct[k] * t);
-      dN[k][0] = 0.25 * cs[k] * (1 + ct[k] * t);
-      dN[k][1] = 0.25 * ct[k] * (1 + cs[k] * s);
-    }
-  }
-};
-
-// Biquadratic Lagrange face: corners as Quad4, then mid-edges (0,-1), (1,0), (0,1), (-1,0), then the centre.
-struct Quad9Surface {
-  static constexpr int nodes = 9;
-  KOKKOS_INLINE_FUNCTION static void lagrange(double x, double L[3], double dL[3])   // at -1, 0, 1
-  {
-    L[0] = 0.5 * x * (x - 1);
-    L[1] = (1 - x) * (1 + x);
-    L[2] = 0.5 * x * (x + 1);
-    dL[0] = x - 0.5;
-    dL[1] = -2 * x;
-    dL[2] = x + 0.5;
-  }
-  KOKKOS_INLINE_FUNCTION static void evaluate(double s, double t, double N[9], double dN[9][2])
-  {
-    constexpr int is[9] = {0, 2, 2, 0, 1, 2, 1, 0, 1}, it[9] = {0, 0, 2, 2, 0, 1, 2, 1, 1};
-    double Ls[3], dLs[3], Lt[3], dLt[3];
-    lagrange(s, Ls, dLs);
-    lagrange(t, Lt, dLt);
-    for (int k = 0; k < 9; ++k) {
-      N[k] = Ls[is[k]] * Lt[it[k]];
-      dN[k][0] = dLs[is[k]] * Lt[it[k]];
-      dN[k][1] = Ls[is[k]] * dLt[it[k]];
-    }
-  }
-};
 
 // The frictionless law over any substrate: phi(d(x)), grad = phi' n, Hessian = phi'' n n + phi' grad n (the last
 // term only where the substrate is curved).

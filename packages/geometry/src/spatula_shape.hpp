@@ -1,5 +1,5 @@
 #pragma once
-// The parametric gecko spatula of Sauer & Holl (paper Sec. 2, Appendix A; MODEL.md section 1).
+// The parametric gecko spatula of Sauer & Holl (paper Sec. 2, Appendix A, Tables 1-2; docs/geometry.md).
 //
 // Twelve parameters (Table 2) fix the reference points P1..P15 (Table 1) and four parts: P_I the shaft and rim
 // (a half elliptic cylinder swept along the axis P1..P7), P_II the outer pad band, P_III the prism {P2, P3, P12}

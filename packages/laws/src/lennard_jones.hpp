@@ -1,6 +1,6 @@
 #pragma once
 // Van der Waals adhesion between the pad surface and a rigid substrate as a Lennard-Jones surface law of the gap r
-// (paper eqs. 16, 18, 23; MODEL.md section 3), per unit undeformed area, positive T = repulsion:
+// (paper Sec. 3, eqs. 16, 18, 23; docs/adhesion.md), per unit undeformed area, positive T = repulsion:
 //
 //   phi(r) = A / (2 pi r0^2) [ (1/360) (r0/r)^8 - (1/6) (r0/r)^2 ]
 //   T(r)   = -phi'(r) = A / (2 pi r0^3) [ (1/45) (r0/r)^9 - (1/3) (r0/r)^3 ]

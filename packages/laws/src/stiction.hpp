@@ -1,7 +1,7 @@
 #pragma once
-// The stiction variant of the adhesion law (paper eq. 27, MODEL.md section 4) on a flat substrate. A surface point
-// is attracted to its anchor, the point of the substrate below where it started (its reference position, or its
-// position at the state where a run re-anchored the law), with the
+// The stiction variant of the adhesion law (paper Sec. 4.3, eq. 27; docs/adhesion.md) on a flat substrate. A surface
+// point is attracted to its anchor, the point of the substrate below where it started (its reference position, or
+// its position at the state where a run re-anchored the law), with the
 // Lennard-Jones law of the total separation r_k = |g| = sqrt(r_s^2 + r_a^2), g = x - anchor, r_a the tangential
 // travel; the force acts along g (equal law in mode I and mode II). The radial law is unstable in compression, so
 // its attraction is kept and the repulsion is replaced by the normal law acting only in compression:

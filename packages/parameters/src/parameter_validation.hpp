@@ -7,6 +7,8 @@
 // structs built afterwards read every key without further checks.
 #include <Teuchos_ParameterList.hpp>
 
+#include <algorithm>
+
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -45,6 +47,14 @@ void declare_int(ParameterList& list, const std::string& name, int default_value
 void declare_bool(ParameterList& list, const std::string& name, bool default_value, const std::string& doc);
 void declare_string(ParameterList& list, const std::string& name, const std::string& default_value,
                     const std::string& doc, const std::vector<std::string>& allowed = {});
+// A validated string choice as the enum whose enumerators are in the order of `names` (the list it was declared
+// with): choices become types once, where they are read, and nothing downstream compares strings.
+template <class Choice>
+Choice choice(const ParameterList& list, const std::string& name, const std::vector<std::string>& names)
+{
+  const auto& value = list.get<std::string>(name);
+  return static_cast<Choice>(std::find(names.begin(), names.end(), value) - names.begin());
+}
 // A sublist declared empty accepts any keys (e.g. a free-form list handed to a third-party solver).
 ParameterList& declare_sublist(ParameterList& list, const std::string& name, const std::string& doc);
 

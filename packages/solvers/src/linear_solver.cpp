@@ -56,8 +56,8 @@ void LinearSolverParameters::declare(Teuchos::ParameterList& list)
                           Range::closed(1, 100000));
   parameters::declare_int(list, "ILU fill level", 1, "level of fill of ILU(k) (gmres-ilu)", Range::closed(0, 8));
   MumpsParameters::declare(parameters::declare_sublist(list, "MUMPS", "direct solver options"));
-  // Default 4: measured 12 % less CPU than 0 on the coarse pull-off at 60 deg with P_max within 0.04 %
-  // (docs/error-vs-time.md); on the medium mesh an estimated 40 % (docs/performance.md).
+  // With refactor = lag. Default 4: measured 12 % less CPU than 0 on the coarse pull-off at 60 deg with P_max within
+  // 0.04 % (docs/error-vs-time.md).
   parameters::declare_int(list, "lag", 4,
                           "mumps: Newton tangents one factorization may serve as preconditioner (0: refactor always)",
                           Range::closed(0, 1000));
@@ -75,16 +75,14 @@ void LinearSolverParameters::declare(Teuchos::ParameterList& list)
 LinearSolverParameters LinearSolverParameters::from(const Teuchos::ParameterList& list)
 {
   LinearSolverParameters p;
-  p.type = list.get<std::string>("type");
+  p.type = parameters::choice<LinearSolverType>(list, "type", linear_solver_names());
   p.tolerance = list.get<double>("tolerance");
   p.maximum_iterations = list.get<int>("maximum iterations");
   p.fill_level = list.get<int>("ILU fill level");
   p.mumps = MumpsParameters::from(list.sublist("MUMPS"));
   p.lag = list.get<int>("lag");
   p.lag_applications = list.get<int>("lag applications");
-  const auto& rules = refactor_rule_names();
-  p.refactor = static_cast<RefactorRule>(
-      std::find(rules.begin(), rules.end(), list.get<std::string>("refactor")) - rules.begin());
+  p.refactor = parameters::choice<RefactorRule>(list, "refactor", refactor_rule_names());
   return p;
 }
 
@@ -214,7 +212,7 @@ Teuchos::RCP<Teuchos::ParameterList> stratimikos_list(const LinearSolverParamete
   belos.set("Solver Type", "Pseudo Block GMRES");
   auto& gmres = belos.sublist("Solver Types").sublist("Pseudo Block GMRES");
   gmres.set("Convergence Tolerance", p.tolerance);
-  if (p.type == "mumps") {
+  if (p.type == LinearSolverType::mumps) {
     // An exact inverse needs one iteration (a few more refine); a lagged or low-rank factorization a few more.
     const bool approximate = p.lag > 0 || p.refactor == RefactorRule::cost || p.mumps.low_rank_tolerance > 0.0;
     gmres.set("Maximum Iterations", approximate ? 60 : 10);

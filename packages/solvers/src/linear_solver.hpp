@@ -25,6 +25,9 @@
 
 namespace spatula::solvers {
 
+// The linear solver of the Newton steps, in the order of linear_solver_names().
+enum class LinearSolverType { mumps, gmres_ilu };
+
 // When a kept MUMPS factorization is replaced by a new one.
 enum class RefactorRule { lag, cost };
 const std::vector<std::string>& refactor_rule_names();   // in the order of RefactorRule
@@ -47,7 +50,7 @@ private:
 };
 
 struct LinearSolverParameters {
-  std::string type = "mumps";   // a name in linear_solver_names()
+  LinearSolverType type = LinearSolverType::mumps;
   double tolerance = 1e-10;     // relative residual of each linear solve
   int maximum_iterations = 500; // Krylov iterations (gmres-ilu)
   int fill_level = 1;           // ILU(k) level of fill (gmres-ilu)

@@ -78,9 +78,7 @@ MumpsParameters MumpsParameters::from(const Teuchos::ParameterList& list)
   p.memory_relaxation = list.get<int>("memory relaxation");
   p.verbose = list.get<bool>("verbose");
   p.keep_workspace = list.get<bool>("keep workspace");
-  const auto& names = mumps_ordering_names();
-  p.ordering = static_cast<MumpsOrdering>(
-      std::find(names.begin(), names.end(), list.get<std::string>("ordering")) - names.begin());
+  p.ordering = parameters::choice<MumpsOrdering>(list, "ordering", mumps_ordering_names());
   p.low_rank_tolerance = list.get<double>("low rank tolerance");
   p.low_rank_from = list.get<int>("low rank from");
   return p;

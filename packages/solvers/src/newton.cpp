@@ -81,7 +81,7 @@ NewtonParameters NewtonParameters::from(const Teuchos::ParameterList& list)
   p.absolute_tolerance = list.get<double>("absolute tolerance");
   p.update_tolerance = list.get<double>("update tolerance");
   p.maximum_iterations = list.get<int>("maximum iterations");
-  p.line_search = list.get<std::string>("line search");
+  p.line_search = parameters::choice<LineSearch>(list, "line search", line_search_names());
   p.scaled_norms = list.get<std::string>("norms") == "scaled";
   p.inexact = list.get<std::string>("forcing term") == "Eisenstat-Walker";
   p.non_contracting_iterations = list.get<int>("non-contracting iterations");
@@ -217,9 +217,8 @@ NewtonResult NewtonSolver::solve(discretization::Vector& x, std::ostream* table,
 
   auto list = Teuchos::rcp(new Teuchos::ParameterList("NOX"));
   list->set("Nonlinear Solver", "Line Search Based");
-  const std::string method = parameters_.line_search == "backtrack"    ? "Backtrack"
-                             : parameters_.line_search == "polynomial" ? "Polynomial"
-                                                                       : "Full Step";
+  static const char* const nox_methods[] = {"Backtrack", "Polynomial", "Full Step"};   // in LineSearch's order
+  const std::string method = nox_methods[static_cast<int>(parameters_.line_search)];
   auto& line_search = list->sublist("Line Search");
   line_search.set("Method", method);
   // When no step reduces |f|, NOX takes its recovery step (a full step); adhesion problems often need it (|f| is

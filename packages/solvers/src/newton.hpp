@@ -12,12 +12,14 @@
 
 namespace spatula::solvers {
 
+enum class LineSearch { backtrack, polynomial, full_step };   // in the order of line_search_names()
+
 struct NewtonParameters {
   double relative_tolerance = 1e-9;
   double absolute_tolerance = 1e-9;    // [nN]
   double update_tolerance = 1e-6;      // [nm] (and rad for the rotation)
   int maximum_iterations = 12;
-  std::string line_search = "backtrack";   // a name in line_search_names()
+  LineSearch line_search = LineSearch::backtrack;
   bool scaled_norms = true;                // tolerances on |f|_2 / sqrt(n) and |dx|_inf / n (NOX's default)
   bool inexact = true;                     // Eisenstat-Walker forcing terms for the linear solves
   int non_contracting_iterations = 2;      // give up after this many iterations with |f_k| >= contraction |f_k-1|

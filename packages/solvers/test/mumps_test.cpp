@@ -1,10 +1,13 @@
 // The MUMPS wrapper on systems with known answers: a solve against a known solution, the inertia of a shifted
-// Laplacian against its exact eigenvalues, reuse of the analysis, orderings, low-rank factors, and the cost rule
-// that decides when a kept factorization is replaced.
+// Laplacian against its exact eigenvalues, reuse of the analysis, orderings, low-rank factors, the cost rule that
+// decides when a kept factorization is replaced, and the linear solvers as NOX reaches them through Thyra.
 #include "linear_solver.hpp"
 #include "mumps_solver.hpp"
 
 #include <Teuchos_DefaultComm.hpp>
+#include <Thyra_LinearOpWithSolveFactoryHelpers.hpp>
+#include <Thyra_TpetraLinearOp.hpp>
+#include <Thyra_TpetraThyraWrappers.hpp>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -192,3 +195,75 @@ TEST(RefactorCost, ServesMoreTangentsWhenTheFactorizationIsDearer)
 }
 
 }  // namespace
+
+// The solver the Newton iterations use, through Thyra as NOX calls it: each linear solver reaches the solution of a
+// sequence of slowly changing systems (as Newton's tangents within a step),
+// and the refactor rules decide as documented. The systems are tridiag(-1, 3 - 0.02 k, -1): well conditioned, so that
+// old factors precondition each later one to a few GMRES iterations.
+namespace {
+
+struct SolveCounts {
+  double worst_error = 0.0;   // |x - x_exact|_inf / |x_exact|_inf over the sequence
+  int factorizations = 0, reused = 0;
+};
+
+SolveCounts solve_sequence(const solvers::LinearSolverParameters& parameters, GlobalOrdinal n = 300)
+{
+  using discretization::LocalOrdinal;
+  using discretization::Node;
+  solvers::LinearSolverFactory factory(parameters);
+  const auto map = shifted_laplacian(n, 0.0)->getRowMap();
+  const auto tpetra_space = Thyra::tpetraVectorSpace<double>(map);
+  const Teuchos::RCP<const Thyra::VectorSpaceBase<double>> space = tpetra_space;
+  auto lows = factory.lows_factory()->createOp();
+  SolveCounts counts;
+  for (int k = 0; k < 5; ++k) {
+    const auto matrix = shifted_laplacian(n, -1.0 + 0.02 * k);
+    const Teuchos::RCP<const Thyra::LinearOpBase<double>> op =
+        Thyra::tpetraLinearOp<double, LocalOrdinal, GlobalOrdinal, Node>(tpetra_space, tpetra_space, matrix);
+    Thyra::initializeOp(*factory.lows_factory(), op, lows.ptr());
+    auto exact = Teuchos::rcp(new Vector(map)), b = Teuchos::rcp(new Vector(map)), x = Teuchos::rcp(new Vector(map));
+    for (std::size_t local = 0; local < map->getNodeNumElements(); ++local)
+      exact->replaceLocalValue(local, std::sin(0.01 * map->getGlobalElement(local)) + 1.0);
+    matrix->apply(*exact, *b);
+    x->putScalar(0.0);
+    const auto status = lows->solve(Thyra::NOTRANS, *Thyra::createVector(b, space), Thyra::createVector(x, space).ptr());
+    EXPECT_EQ(status.solveStatus, Thyra::SOLVE_STATUS_CONVERGED) << "system " << k;
+    x->update(-1.0, *exact, 1.0);
+    counts.worst_error = std::max(counts.worst_error, x->normInf() / exact->normInf());
+  }
+  counts.factorizations = factory.mumps_statistics().factorizations;
+  counts.reused = factory.mumps_statistics().reused;
+  return counts;
+}
+
+}  // namespace
+
+TEST(LinearSolverFactory, EverySolverReachesTheSolutionOfAChangingSequence)
+{
+  solvers::LinearSolverParameters fresh;   // a factorization for every system
+  fresh.refactor = solvers::RefactorRule::lag;
+  fresh.lag = 0;
+  const auto every = solve_sequence(fresh);
+  EXPECT_LT(every.worst_error, 1e-8);
+  EXPECT_EQ(every.factorizations, 5);
+  EXPECT_EQ(every.reused, 0);
+
+  solvers::LinearSolverParameters lagged = fresh;   // one factorization serves the next four (GMRES on old factors)
+  lagged.lag = 4;
+  const auto kept = solve_sequence(lagged);
+  EXPECT_LT(kept.worst_error, 1e-8);
+  EXPECT_EQ(kept.factorizations, 1);
+  EXPECT_EQ(kept.reused, 4);
+
+  const auto cost = solve_sequence(solvers::LinearSolverParameters{});   // the default: measured time decides
+  EXPECT_LT(cost.worst_error, 1e-8);
+  EXPECT_EQ(cost.factorizations + cost.reused, 5);
+  EXPECT_GE(cost.factorizations, 1);
+
+  solvers::LinearSolverParameters ilu;   // Belos GMRES with Ifpack2 ILU(1): no MUMPS at all
+  ilu.type = solvers::LinearSolverType::gmres_ilu;
+  const auto iterative = solve_sequence(ilu);
+  EXPECT_LT(iterative.worst_error, 1e-6);
+  EXPECT_EQ(iterative.factorizations, 0);
+}

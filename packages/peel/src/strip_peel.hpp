@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-namespace spatula::contact {
+namespace spatula::peel {
 
 struct StripPeelParameters {
   double angle_degrees = 90.0;
@@ -37,4 +37,4 @@ struct StripPeelResult {
 
 StripPeelResult peel_strip(const StripPeelParameters& parameters, Teuchos::RCP<const Teuchos::Comm<int>> comm);
 
-}  // namespace spatula::contact
+}  // namespace spatula::peel

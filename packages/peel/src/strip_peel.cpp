@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-namespace spatula::contact {
+namespace spatula::peel {
 
 using discretization::Master;
 
@@ -29,7 +29,7 @@ StripPeelResult peel_strip(const StripPeelParameters& p, Teuchos::RCP<const Teuc
   constraints.lift_direction = {std::cos(theta), 0.0, std::sin(theta)};
   constraints.slide_direction = {-std::sin(theta), 0.0, std::cos(theta)};
 
-  AdhesionSettings s;
+  contact::AdhesionSettings s;
   s.law = p.law;
   s.enrichment = p.enrichment;
   s.quadrature = p.quadrature;
@@ -40,7 +40,7 @@ StripPeelResult peel_strip(const StripPeelParameters& p, Teuchos::RCP<const Teuc
   discretization::SolidParameters solid;
   solid.young = p.young;
   auto system = Teuchos::rcp(new discretization::DiscreteSystem(mesh, partition, constraints, solid, comm,
-                                                                {s.enrichment, make_contact_model(s)}));
+                                                                {s.enrichment, contact::make_contact_model(s)}));
   solvers::LinearSolverFactory linear(solvers::LinearSolverParameters{});
   auto model = Teuchos::rcp(new solvers::SpatulaModel(system, linear.lows_factory()));
   solvers::NewtonParameters newton_parameters;
@@ -74,4 +74,4 @@ StripPeelResult peel_strip(const StripPeelParameters& p, Teuchos::RCP<const Teuc
   return result;
 }
 
-}  // namespace spatula::contact
+}  // namespace spatula::peel
