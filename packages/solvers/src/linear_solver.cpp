@@ -90,6 +90,13 @@ namespace {
 
 using ThyraOperator = Thyra::TpetraLinearOp<double, LocalOrdinal, GlobalOrdinal, Node>;
 
+// GMRES iterations per solve around MUMPS: an exact inverse needs one (a few more refine); old or low-rank factors more.
+int gmres_limit(const LinearSolverParameters& p)
+{
+  const bool approximate = p.lag > 0 || p.refactor == RefactorRule::cost || p.mumps.low_rank_tolerance > 0.0;
+  return approximate ? 60 : 10;
+}
+
 // MUMPS as a Thyra preconditioner: A^-1 itself. Keeps one MumpsSolver (and its symbolic analysis) per map.
 class MumpsPreconditionerFactory : public Thyra::PreconditionerFactoryBase<double> {
 public:
@@ -167,7 +174,10 @@ private:
       return parameters_.lag > 0 && served_ < parameters_.lag &&
              statistics.applications_since_factor - applications_at_init_ <= parameters_.lag_applications;
     }
-    int refactor = cost_.keep(statistics.solve_seconds - solve_seconds_at_init_) ? 0 : 1;
+    // Factors that no longer bring GMRES to its tolerance within its iteration limit are replaced whatever the
+    // clock says (a capped solve costs the same every time, so the average would never rise above it).
+    const bool capped = statistics.applications_since_factor - applications_at_init_ >= gmres_limit(parameters_);
+    int refactor = capped || !cost_.keep(statistics.solve_seconds - solve_seconds_at_init_) ? 1 : 0;
     // The clocks differ by rank: any rank that would refactor decides for all.
     Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, refactor, Teuchos::outArg(refactor));
     return refactor == 0;
@@ -213,10 +223,8 @@ Teuchos::RCP<Teuchos::ParameterList> stratimikos_list(const LinearSolverParamete
   auto& gmres = belos.sublist("Solver Types").sublist("Pseudo Block GMRES");
   gmres.set("Convergence Tolerance", p.tolerance);
   if (p.type == LinearSolverType::mumps) {
-    // An exact inverse needs one iteration (a few more refine); a lagged or low-rank factorization a few more.
-    const bool approximate = p.lag > 0 || p.refactor == RefactorRule::cost || p.mumps.low_rank_tolerance > 0.0;
-    gmres.set("Maximum Iterations", approximate ? 60 : 10);
-    gmres.set("Num Blocks", approximate ? 60 : 10);
+    gmres.set("Maximum Iterations", gmres_limit(p));
+    gmres.set("Num Blocks", gmres_limit(p));
     list->set("Preconditioner Type", "MUMPS");
   } else {
     gmres.set("Maximum Iterations", p.maximum_iterations);
