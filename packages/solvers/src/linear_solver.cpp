@@ -68,7 +68,8 @@ void LinearSolverParameters::declare(Teuchos::ParameterList& list)
                              "mumps: when a kept factorization is replaced: lag (after 'lag' tangents or once a "
                              "tangent needed more than 'lag applications' solves) or cost (once the last tangent's "
                              "solves took longer than the average time per tangent of the factorization's cycle, "
-                             "factorization included; 'lag' and 'lag applications' are then not used)",
+                             "factorization included, or once its GMRES solve reached its iteration limit; 'lag' "
+                             "and 'lag applications' are then not used)",
                              refactor_rule_names());
 }
 
