@@ -5,7 +5,13 @@
 
 studies: table4 (peel by rotation), table6 (pull-off at 45/60/75/90 deg, also Table 5), stiction, gamma-W (Table 7),
 gamma-L (Table 8), rough (Fig. 14), all. Runs use one MPI rank each, `--jobs` of them at once (both cores by default); pull-offs
-wait for the rotation run whose checkpoints they start from. Progress: one line per converged step of every run.
+start as soon as the rotation run they start from has written their checkpoint (a copy of it, <scene>.restart.h5, is
+what they read). Progress: one line per converged step of every run (stage, theta_y or u_z, elapsed, an estimate of
+what remains).
+
+Stopping and resuming: a study can be stopped at any moment (Ctrl-C, kill, the end of a session). Every run
+checkpoints its last converged state every few minutes (Output/checkpoint interval); the next `run-study.py` of the
+study goes on with each stopped run from there (`spatula --resume`) and repeats only the steps after the checkpoint.
 
 Mesh level: the scenes in xml/studies/ are written for the medium mesh and tables 4 and 6, the stiction pull-off (it
 restarts from the medium rotation) and the rough study run on it. The sweeps (gamma-W, gamma-L: six rotations and
@@ -20,6 +26,7 @@ import argparse
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import time
@@ -69,9 +76,12 @@ def planned_runs(study, forced_level):
 
 
 def scene_file(work, level, scene):
-    """The study XML at the given mesh level, written to <work>/<scene>.xml."""
+    """The study XML at the given mesh level, written to <work>/<scene>.xml (a pull-off reads its copy of the
+    rotation's checkpoints, <scene>.restart.h5)."""
     text = open(os.path.join(SCENES, scene + '.xml')).read()
     text = re.sub(r'(name="level" type="string" value=")\w+(")', r'\g<1>' + level + r'\2', text)
+    if scene in DEPENDS:
+        text = re.sub(r'(name="restart file" type="string" value=")[^"]*(")', r'\g<1>' + scene + r'.restart.h5\2', text)
     path = os.path.join(work, scene + '.xml')
     open(path, 'w').write(text)
     return path
@@ -112,12 +122,83 @@ def started(work, scene):
     return complete(work, scene) or os.path.exists(os.path.join(work, scene + '.incomplete', 'curve.csv'))
 
 
+def restart_theta(scene):
+    return float(re.search(r'name="restart theta_y" type="double" value="([\d.]+)"',
+                           open(os.path.join(SCENES, scene + '.xml')).read()).group(1))
+
+
+def checkpoint_ready(directory, dependency, scene):
+    """The rotation's checkpoints file once it holds the pull-off's checkpoint (complete run, or one that has logged
+    writing it), else None."""
+    if complete(directory, dependency):
+        return os.path.join(directory, dependency, 'checkpoints.h5')
+    log = os.path.join(directory, dependency + '.log')
+    label = f"checkpoint theta_y={restart_theta(scene):g} written"
+    if os.path.exists(log) and label in open(log).read():
+        for suffix in ('.partial', '.incomplete'):
+            path = os.path.join(directory, dependency + suffix, 'checkpoints.h5')
+            if os.path.exists(path):
+                return path
+    return None
+
+
+def resumable(directory, scene_xml):
+    """Whether the app finds a stopped run of this scene to go on from (`--resume --validate-only`)."""
+    result = subprocess.run([APP, scene_xml, '--resume', '--validate-only'], cwd=directory, capture_output=True)
+    return result.returncode == 0
+
+
+def target(scene):
+    """(stage, final value) the scene's loading ends at: the rotation's theta_y, or the lift's final u_z (relative)."""
+    text = open(os.path.join(SCENES, scene + '.xml')).read()
+    value = lambda name: float(re.search(rf'name="{name}" type="double" value="([\d.]+)"', text).group(1))
+    return ('rotation', value('theta_y')) if 'value="rotation"' in text else ('lift', value('final lift'))
+
+
+def progress(work, run, line, elapsed, origin):
+    """The run's progress line: stage, theta_y or u_z, elapsed, and what remains at the pace so far (to the scene's
+    final load; a pull-off ends earlier, at detachment: its estimate uses the coarser level's detachment when
+    there is one)."""
+    level, scene = run
+    match = re.search(r'step\s+(\d+)\s+(\w+)\s+theta_y\s+([-\d.]+)\s+deg\s+u_z\s+([-\d.]+)\s+nm', line)
+    if not match:
+        return f'[{level} {scene}] {" ".join(line.split())[:170]}'
+    step, stage, theta, lift = match.group(1), match.group(2), float(match.group(3)), float(match.group(4))
+    value = theta if stage == 'rotation' else lift
+    kind, end = target(scene)
+    if stage == 'lift' and kind == 'lift':
+        for coarser in LEVELS[:LEVELS.index(level)][::-1]:
+            rows = read_curve(os.path.join(work, coarser), scene) if complete(os.path.join(work, coarser), scene) else None
+            if rows:
+                start = next(float(r['u_z_nm']) for r in rows if r['stage'] == 'lift')
+                end = float(rows[-1]['u_z_nm']) - start
+                break
+    origin.setdefault(run, (value, elapsed))
+    first_value, first_time = origin[run]
+    done = value - first_value
+    remaining = ''
+    if stage == kind and done > 0 and elapsed > first_time:
+        goal = end if kind == 'rotation' else first_value + end
+        minutes = max(0.0, goal - value) * (elapsed - first_time) / done / 60
+        remaining = f', about {minutes:.{1 if minutes < 10 else 0}f} min left at this pace'
+    unit = 'deg' if stage == 'rotation' else 'nm'
+    name = 'theta_y' if stage == 'rotation' else 'u_z'
+    return f'[{level} {scene}] step {step} {stage} {name} = {value:.3f} {unit}, {elapsed / 60:.1f} min{remaining}'
+
+
+def step_lines(log):
+    lines = open(log).read().splitlines() if os.path.exists(log) else []
+    return [l for l in lines if l.startswith('step ') or 'jump' in l or 'detachment' in l]
+
+
 def run_all(runs, work, jobs):
-    """Runs the (level, scene) pairs not yet complete in <work>/<level>, `jobs` at a time; returns the failed ones."""
+    """Runs the (level, scene) pairs not yet complete in <work>/<level>, `jobs` at a time (a stopped one resumed from
+    its last checkpoint); returns the failed ones."""
     pending = [r for r in runs if not complete(os.path.join(work, r[0]), r[1])]
     running = {}
     failed = []
     seen = {}
+    origin = {}
     environment = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
     while pending or running:
         for run in list(pending):
@@ -125,26 +206,47 @@ def run_all(runs, work, jobs):
                 break
             level, scene = run
             directory = os.path.join(work, level)
-            dependency = DEPENDS.get(scene)
-            if dependency and not complete(directory, dependency):
-                if (level, dependency) not in running and (level, dependency) not in pending:
-                    print(f'[{level} {scene}] waits for {dependency}, which failed', flush=True)
-                    pending.remove(run)
-                    failed.append(run)
-                continue
-            pending.remove(run)
             os.makedirs(directory, exist_ok=True)
-            log = open(os.path.join(directory, scene + '.log'), 'w')
-            running[run] = (subprocess.Popen([APP, scene_file(directory, level, scene)], cwd=directory, stdout=log,
-                                             stderr=subprocess.STDOUT, env=environment), log, time.time())
-            print(f'[{level} {scene}] started', flush=True)
-        time.sleep(5)
+            dependency = DEPENDS.get(scene)
+            if dependency:
+                source = checkpoint_ready(directory, dependency, scene)
+                copy = os.path.join(directory, scene + '.restart.h5')
+                if not source and not os.path.exists(copy):
+                    if (level, dependency) not in running and (level, dependency) not in pending:
+                        print(f'[{level} {scene}] waits for {dependency}, which failed', flush=True)
+                        pending.remove(run)
+                        failed.append(run)
+                    continue
+                if not os.path.exists(copy):
+                    shutil.copyfile(source, copy + '.copying')
+                    os.replace(copy + '.copying', copy)
+            pending.remove(run)
+            xml = scene_file(directory, level, scene)
+            resume = resumable(directory, xml)
+            if resume:   # the lines already shown by the stopped run are not shown again
+                seen[run] = len(step_lines(os.path.join(directory, scene + '.log')))
+            log = open(os.path.join(directory, scene + '.log'), 'a' if resume else 'w')
+            running[run] = (subprocess.Popen([APP, xml] + (['--resume'] if resume else []), cwd=directory, stdout=log,
+                                             stderr=subprocess.STDOUT, env=environment, start_new_session=True),
+                            log, time.time())
+            print(f'[{level} {scene}] ' + ('resumed from its last checkpoint' if resume else 'started'), flush=True)
+        try:
+            time.sleep(5)
+        except KeyboardInterrupt:   # each run stops at its next converged state and checkpoints it: wait for that
+            print('interrupted: the runs stop at their next converged state (Ctrl-C again ends them at once); '
+                  'the same command resumes them', flush=True)
+            for process, _, _ in running.values():
+                process.send_signal(signal.SIGINT)
+            for process, _, _ in running.values():
+                process.wait()
+            raise
         for run, (process, log, started) in list(running.items()):
             level, scene = run
-            lines = open(os.path.join(work, level, scene + '.log')).read().splitlines()
-            steps = [l for l in lines if l.startswith('step ') or 'jump' in l or 'detachment' in l]
+            steps = step_lines(os.path.join(work, level, scene + '.log'))
             for line in steps[seen.get(run, 0):]:
-                print(f'[{level} {scene}] {" ".join(line.split())[:170]}', flush=True)
+                wall = re.search(r'([\d.]+) s$', line.strip())
+                print(progress(work, run, line, float(wall.group(1)) if wall else time.time() - started, origin),
+                      flush=True)
             seen[run] = len(steps)
             if process.poll() is not None:
                 log.close()

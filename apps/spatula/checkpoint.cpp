@@ -76,25 +76,61 @@ std::string restart_label(const LoadingParameters& loading)
 
 void write_checkpoint(const std::string& file, const std::string& label, const discretization::DiscreteSystem& system,
                       const discretization::Vector& x, const analysis::LoadPoint& point, const PathStage& stage,
-                      const Scene& scene)
+                      const Scene& scene, const RunRecord& record)
 {
   const auto displacements = system.space_displacements(x);   // collective
   std::vector<double> masters;
   for (int m = 0; m < discretization::master_count; ++m) masters.push_back(system.master(x, discretization::Master(m)));
   if (system.owned_map()->getComm()->getRank() != 0) return;
-  const bool exists = std::filesystem::exists(file);
-  io::Hdf5File out(file, exists ? io::Hdf5File::Mode::append : io::Hdf5File::Mode::create);
-  const std::string group = "/checkpoints/" + label;
-  if (out.exists(group + "/displacements")) {
-    if (label != last_state_label) return;   // already taken (a restarted run passing it again)
-    out.remove(group);
+  namespace fs = std::filesystem;
+  const std::string writing = file + ".writing";
+  const bool exists = fs::exists(file);
+  if (exists) fs::copy_file(file, writing, fs::copy_options::overwrite_existing);
+  {
+    io::Hdf5File out(writing, exists ? io::Hdf5File::Mode::append : io::Hdf5File::Mode::create);
+    const std::string group = "/checkpoints/" + label;
+    if (out.exists(group + "/displacements")) {
+      if (label != last_state_label) {   // already taken (a restarted run passing it again)
+        fs::remove(writing);
+        return;
+      }
+      out.remove(group);
+    }
+    out.write(group + "/displacements", displacements, 3);
+    out.write(group + "/masters", masters);
+    out.write(group + "/history", history(point));
+    out.write(group + "/stage", std::vector<double>{stage.lifting ? 1.0 : 0.0, stage.lift_start});
+    out.write(group + "/signature", values(signature(system.nodes(), scene)));
+    out.write(group + "/material", values(material_signature(scene)));
+    out.write(group + "/run", std::vector<double>{record.initial_internal_energy, record.initial_contact_energy,
+                                                  record.peak_moment, record.peak_force, record.seconds,
+                                                  static_cast<double>(record.field_states),
+                                                  record.step_control.increment, record.step_control.failed_load,
+                                                  record.step_control.failed_known ? 1.0 : 0.0,
+                                                  record.step_control.bisecting ? 1.0 : 0.0});
   }
-  out.write(group + "/displacements", displacements, 3);
-  out.write(group + "/masters", masters);
-  out.write(group + "/history", history(point));
-  out.write(group + "/stage", std::vector<double>{stage.lifting ? 1.0 : 0.0, stage.lift_start});
-  out.write(group + "/signature", values(signature(system.nodes(), scene)));
-  out.write(group + "/material", values(material_signature(scene)));
+  fs::rename(writing, file);
+}
+
+bool resumable(const std::string& file)
+{
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(file, error)) return false;
+  try {
+    io::Hdf5File in(file, io::Hdf5File::Mode::read);
+    const std::string group = std::string("/checkpoints/") + last_state_label;
+    return in.exists(group + "/displacements") && in.exists(group + "/run");
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+RunRecord read_run_record(const Scene& scene)
+{
+  io::Hdf5File in(scene.loading.restart_file, io::Hdf5File::Mode::read);
+  const auto r = in.read_doubles("/checkpoints/" + restart_label(scene.loading) + "/run");
+  if (r.size() != 10) throw std::runtime_error(restart_key(scene) + ": the checkpoint has no run record");
+  return {r[0], r[1], r[2], r[3], r[4], static_cast<int>(r[5]), analysis::StepControllerState{r[6], r[7], r[8] != 0.0, r[9] != 0.0}};
 }
 
 void check_checkpoint(const Scene& scene, const discretization::NodeSpace& nodes)

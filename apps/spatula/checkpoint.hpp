@@ -26,11 +26,28 @@ struct PathStage {
   double lift_start = 0.0;   // u_z where the lift began [nm]
 };
 
+// What a run needs, beyond the state, to go on as if it had never stopped (`spatula --resume`): the energies
+// its curve counts from, the peaks its detachment test compares with, its wall time so far and how many field
+// states it had written, and the increment its step controller would have tried next.
+struct RunRecord {
+  double initial_internal_energy = 0.0, initial_contact_energy = 0.0;   // the half model's, as LoadPoint's
+  double peak_moment = 0.0, peak_force = 0.0;
+  double seconds = 0.0;
+  int field_states = 0;
+  analysis::StepControllerState step_control;
+};
+
 // Rank 0 writes (all ranks must call: the state is gathered). A label already in the file is kept, except the last
-// state, which is replaced.
+// state, which is replaced. The file is replaced as a whole (written beside it, then renamed): a run killed while
+// writing leaves the checkpoints it had.
 void write_checkpoint(const std::string& file, const std::string& label, const discretization::DiscreteSystem& system,
                       const discretization::Vector& x, const analysis::LoadPoint& point, const PathStage& stage,
-                      const Scene& scene);
+                      const Scene& scene, const RunRecord& record);
+
+// Whether `file` holds a complete 'last state' checkpoint with its run record (a run that can be resumed).
+bool resumable(const std::string& file);
+// The run record of the scene's restart checkpoint.
+RunRecord read_run_record(const Scene& scene);
 
 // Checks, before anything is computed or written, that the scene's restart file holds its checkpoint and that the
 // checkpoint was made for this geometry, mesh, enrichment and material; throws parameters::InputError naming

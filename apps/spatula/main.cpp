@@ -1,6 +1,6 @@
 // spatula: the gecko spatula adhesion program.
 //
-//   spatula [scene.xml] [--validate-only] [--print-parameters]
+//   spatula [scene.xml] [--resume] [--validate-only] [--print-parameters]
 //
 // Without a file it runs the embedded default scene (xml/default.xml). Every input is validated before anything
 // is computed or written; input errors name the key, the value and what is allowed (exit code 2).
@@ -23,6 +23,7 @@
 #include <Teuchos_StandardCatchMacros.hpp>
 #include <Teuchos_TimeMonitor.hpp>
 
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -36,11 +37,14 @@ struct Options {
   std::string scene_file;
   bool validate_only = false;
   bool print_parameters = false;
+  bool resume = false;
 };
 
 const char* usage =
-    "usage: spatula [scene.xml] [--validate-only] [--print-parameters]\n"
+    "usage: spatula [scene.xml] [--resume] [--validate-only] [--print-parameters]\n"
     "  scene.xml           Teuchos XML parameter list (default: the embedded scene xml/default.xml)\n"
+    "  --resume            go on with the stopped run of this scene (killed, interrupted or failed) from the last\n"
+    "                      state it checkpointed (Output/checkpoint interval), in the same Output/directory\n"
     "  --validate-only     check the scene and exit\n"
     "  --print-parameters  print every valid key with its default and documentation\n";
 
@@ -51,6 +55,7 @@ Options parse(int argc, char** argv)
     const std::string argument = argv[i];
     if (argument == "--validate-only") options.validate_only = true;
     else if (argument == "--print-parameters") options.print_parameters = true;
+    else if (argument == "--resume") options.resume = true;
     else if (argument == "--help" || argument == "-h") {
       std::cout << usage;
       std::exit(0);
@@ -82,6 +87,7 @@ struct Checked {
   spatula::mesh::HexMesh mesh;
   spatula::mesh::Partition partition;
   spatula::app::MemoryEstimate memory;
+  std::string resume_from;   // --resume: the stopped run's directory
 };
 
 // Reads and checks the scene, the output directory, the mesh against the memory and the ranks, the restart file:
@@ -96,6 +102,7 @@ Checked check_everything(const Options& options, const Teuchos::Comm<int>& comm)
                           : parameters::read_xml_file(options.scene_file);
     run.scene = app::read_scene(user);
     run.shape.emplace(run.scene->geometry);
+    if (options.resume) run.resume_from = app::prepare_resume(*run.scene);
   });
   app::agree(comm, [&] { app::check_output_directory(*run.scene, options.scene_file); }, true);
   app::agree(comm, [&] {
@@ -143,6 +150,25 @@ void write_failure_note(const spatula::io::OutputDirectory& directory, const spa
          << "' replaces this directory).\n";
 }
 
+// The run's field output: new, or a resumed run's own, kept up to the state it resumes from (if that cannot be
+// read, a new one, said on `out`).
+std::unique_ptr<spatula::io::XdmfOutput> open_fields(const spatula::io::OutputDirectory& directory, const Checked& run,
+                                                     const spatula::app::Scene& scene, std::ostream& out)
+{
+  using spatula::io::XdmfOutput;
+  if (scene.resume) {
+    try {
+      return std::make_unique<XdmfOutput>(directory.file(""), "mesh", run.mesh,
+                                          spatula::app::read_run_record(scene).field_states,
+                                          std::vector<std::string>{"I1"}, std::vector<std::string>{"displacement"});
+    } catch (const std::exception& error) {
+      out << "spatula: the stopped run's field states cannot be kept (" << error.what()
+          << "): the fields start again at the resumed state\n";
+    }
+  }
+  return std::make_unique<XdmfOutput>(directory.file(""), "mesh", run.mesh, run.partition);
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -176,7 +202,7 @@ int main(int argc, char** argv)
       if (root) app::valid_scene_parameters().print(out, Teuchos::ParameterList::PrintOptions().showDoc(true).indent(2).showTypes(true));
       return 0;
     }
-    const Checked run = check_everything(options, *comm);
+    Checked run = check_everything(options, *comm);
     const auto summary = mesh::summarize(run.mesh, run.scene->mesh.level);
     if (root) print_summary(out, run, summary);
     if (options.validate_only) {
@@ -184,15 +210,25 @@ int main(int argc, char** argv)
       return 0;
     }
 
-    const auto& scene = *run.scene;
+    auto& scene = *run.scene;
     app::agree(*comm, [&] {
       Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: output"));
-      directory = std::make_unique<io::OutputDirectory>(scene.output.directory);
+      if (scene.resume) {
+        directory = std::make_unique<io::OutputDirectory>(scene.output.directory, run.resume_from);
+        std::filesystem::remove(directory->file("FAILURE.txt"));
+      } else {
+        directory = std::make_unique<io::OutputDirectory>(scene.output.directory);
+      }
       parameters::write_xml_file(scene.validated, directory->file("scene.xml"));
       write_summary_files(*directory, summary, *run.shape);
+      if (scene.resume) scene.loading.restart_file = app::resumed_checkpoint_file(scene);
       if (scene.output.write_mesh || scene.loading.type != app::LoadingType::none)
-        fields = std::make_unique<io::XdmfOutput>(directory->file(""), "mesh", run.mesh, run.partition);
+        fields = open_fields(*directory, run, scene, out);
     }, true);
+    if (scene.resume) {
+      scene.loading.restart_file = app::resumed_checkpoint_file(scene);
+      if (root) out << "spatula: resuming the stopped run " << run.resume_from << "\n";
+    }
     if (scene.loading.type != app::LoadingType::none) {
       const auto stop =
           app::run_simulation(scene, *run.shape, run.mesh, run.partition, comm, directory.get(), fields.get(), out);

@@ -1,11 +1,15 @@
 #include "preflight.hpp"
 
+#include "checkpoint.hpp"
 #include "mesh_summary.hpp"
 #include "output_directory.hpp"
 #include "parameter_validation.hpp"
 #include "spatula_mesher.hpp"
 
+#include <Teuchos_ParameterList.hpp>
+
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -125,6 +129,38 @@ std::string usable_ranges(const Scene& scene, mesh::Part part)
 
 }  // namespace
 
+std::string prepare_resume(Scene& scene)
+{
+  const std::string key = "--resume with 'Output/directory' = '" + parameters::shorten(scene.output.directory) + "'";
+  if (scene.adhesion.settings.anchor_at_restart)
+    throw parameters::InputError(key + ": 'Adhesion/stiction anchors' = 'restart state' cannot be resumed (the "
+                                 "anchors are not in the checkpoint): run the scene again from its start");
+  const auto stopped_runs = io::OutputDirectory::stopped_runs(scene.output.directory);
+  for (const auto& stopped : stopped_runs) {
+    const std::string file = (std::filesystem::path(stopped) / "checkpoints.h5").string();
+    if (!resumable(file)) continue;
+    const auto earlier = parameters::read_xml_file((std::filesystem::path(stopped) / "scene.xml").string());
+    for (const char* part : {"Geometry", "Mesh", "Material", "Adhesion", "Loading"})
+      if (!earlier.isSublist(part) || !Teuchos::haveSameValues(earlier.sublist(part), scene.validated.sublist(part)))
+        throw parameters::InputError(key + ": the stopped run in '" + stopped + "' was made with other '" + part +
+                                     "' parameters (its scene.xml): resume it with its own scene, or run this one "
+                                     "without --resume (which replaces it)");
+    scene.resume = true;
+    scene.loading.restart_file = file;
+    scene.loading.restart_from_last_state = true;
+    return stopped;
+  }
+  throw parameters::InputError(key + ": no stopped run to go on from (" +
+                               (stopped_runs.empty() ? std::string("no <directory>.partial or .incomplete")
+                                                     : "no 'last state' checkpoint in " + stopped_runs.front()) +
+                               "); run the scene without --resume");
+}
+
+std::string resumed_checkpoint_file(const Scene& scene)
+{
+  return (std::filesystem::path(io::OutputDirectory::staging_path(scene.output.directory)) / "checkpoints.h5").string();
+}
+
 void check_output_directory(const Scene& scene, const std::string& scene_file)
 {
   const auto& directory = scene.output.directory;
@@ -134,7 +170,7 @@ void check_output_directory(const Scene& scene, const std::string& scene_file)
   if (!scene_file.empty() && io::OutputDirectory::would_replace(directory, scene_file))
     throw parameters::InputError(key + " would replace the scene file '" + scene_file +
                                  "' itself: copy the scene elsewhere or choose another directory");
-  if (!scene.loading.restart_file.empty() && io::OutputDirectory::would_replace(directory, scene.loading.restart_file))
+  if (!scene.resume && !scene.loading.restart_file.empty() && io::OutputDirectory::would_replace(directory, scene.loading.restart_file))
     throw parameters::InputError(key + " would replace 'Loading/restart file' = '" + scene.loading.restart_file +
                                  "' before the run could finish: choose another 'Output/directory'");
 }

@@ -17,6 +17,11 @@ void OutputParameters::declare(Teuchos::ParameterList& output)
                           "write displacement and I1 fields every this many converged steps (0: first and last)",
                           parameters::Range::closed(0, 100000));
   parameters::declare_bool(output, "convergence tables", false, "print the Newton iterations of every step");
+  parameters::declare_double(output, "checkpoint interval", 10.0,
+                             "wall-clock minutes between checkpoints of the last converged state (checkpoints.h5, "
+                             "'last state'), from which 'spatula scene.xml --resume' goes on after the run was killed "
+                             "(0: only when the run stops on a signal or a failure)",
+                             parameters::Range::closed(0.0, 1e6));
 }
 
 OutputParameters OutputParameters::from(const Teuchos::ParameterList& output)
@@ -27,6 +32,7 @@ OutputParameters OutputParameters::from(const Teuchos::ParameterList& output)
   p.write_mesh = output.get<bool>("write mesh");
   p.field_interval = output.get<int>("field interval");
   p.convergence_tables = output.get<bool>("convergence tables");
+  p.checkpoint_minutes = output.get<double>("checkpoint interval");
   if (p.directory.empty()) throw parameters::InputError("parameter 'Output/directory' must not be empty");
   return p;
 }

@@ -19,6 +19,7 @@ struct OutputParameters {
   bool write_mesh = true;
   int field_interval = 0;          // write fields every this many converged steps (0: start and end only)
   bool convergence_tables = false;   // print every Newton iteration
+  double checkpoint_minutes = 10.0;  // wall-clock minutes between 'last state' checkpoints (0: only at a stop)
   static void declare(Teuchos::ParameterList& output);
   static OutputParameters from(const Teuchos::ParameterList& output);
 };
@@ -32,6 +33,7 @@ struct Scene {
   LoadingParameters loading;
   solvers::LinearSolverParameters linear_solver;
   solvers::NewtonParameters newton;
+  bool resume = false;                // go on with a stopped run (command line --resume): restart file = its state
   Teuchos::ParameterList validated;   // the full list with defaults filled in (echoed to the output)
 };
 

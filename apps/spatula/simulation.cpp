@@ -3,9 +3,12 @@
 #include "checkpoint.hpp"
 #include "interruption.hpp"
 
+#include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_TimeMonitor.hpp>
 
 #include <algorithm>
+#include <chrono>
+#include <filesystem>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -24,11 +27,19 @@ class CurveWriter {
 public:
   // Energies are counted from a baseline state: the undeformed spatula, or (rough substrates) the pad pressed
   // onto the substrate, whose internal and adhesion energies are given here.
+  // `resume_after`: go on with the curve of a stopped run, keeping its rows up to that step (-1: a new curve).
   CurveWriter(const std::string& file, double young, double reference_energy, double initial_internal_energy,
-              double initial_contact_energy)
-      : out_(file), young_(young), reference_(reference_energy), initial_internal_(initial_internal_energy),
+              double initial_contact_energy, int resume_after = -1)
+      : young_(young), reference_(reference_energy), initial_internal_(initial_internal_energy),
         initial_contact_(initial_contact_energy)
   {
+    if (resume_after >= 0) {
+      keep_rows_up_to(file, resume_after);
+      out_.open(file, std::ios::app);
+      out_ << std::setprecision(10);
+      return;
+    }
+    out_.open(file);
     out_ << "step,stage,theta_y_deg,u_z_nm,M_y_nNnm,M_y_per_ER0^3,P_z_nN,P_z_per_ER0^2,Pi_int_1e-18J,"
             "Pi_ext_1e-18J,Pi_c_1e-18J,Pi_sa_1e-18J,Pi_ext_per_Pi_c0,Pi_int_per_Pi_c0,Pi_sa_per_Pi_c0,"
             "dissipated_per_Pi_c0,balance_error_per_Pi_c0,after_jump,contact_faces_active,contact_faces_skipped,"
@@ -56,6 +67,20 @@ public:
   }
 
 private:
+  // Rewrites the curve with its header and the rows of steps up to `last_step` (a stopped run's rows past its
+  // checkpoint are computed again).
+  static void keep_rows_up_to(const std::string& file, int last_step)
+  {
+    std::ifstream in(file);
+    if (!in) throw std::runtime_error("cannot resume: '" + file + "' is missing");
+    std::string line, kept;
+    for (bool header = true; std::getline(in, line); header = false)
+      if (header || (!line.empty() && std::stoi(line.substr(0, line.find(','))) <= last_step)) kept += line + "\n";
+    in.close();
+    std::ofstream(file + ".writing") << kept;
+    std::filesystem::rename(file + ".writing", file);
+  }
+
   std::ofstream out_;
   double young_, reference_, initial_internal_, initial_contact_;
 };
@@ -104,6 +129,11 @@ std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaSh
   path.set_jump_parameters(jump);
   std::unique_ptr<CurveWriter> curve;
   discretization::Master stage = discretization::Master::rotation;
+  PathStage path_stage;   // where the path is: rotation, or lift from where
+  // The energies the curve counts from (the undeformed spatula, or the pad pressed onto a rough substrate) and the
+  // peaks the detachment test compares with: kept in every checkpoint, so that a resumed run goes on with them.
+  double initial_contact = path.last().contact_energy, initial_internal = 0.0;
+  double peak_moment = 0.0, peak_force = 0.0;
   auto write_fields = [&](const discretization::Vector& x, double time) {
     io::FieldState state;
     state.time = time;
@@ -113,6 +143,15 @@ std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaSh
     state.cell_scalars["I1"] = std::move(trace);   // the paper's colour scale: tr(sigma) / E
     if (fields) fields->add_state(state);
   };
+  // The last converged state, as 'last state' with the run record (collective).
+  auto write_last_state = [&](const discretization::Vector& x, const analysis::LoadPoint& p) {
+    const RunRecord record{initial_internal, initial_contact, peak_moment, peak_force, p.seconds,
+                           fields ? fields->state_count() : 0, p.step_control};
+    write_checkpoint(directory ? directory->file("checkpoints.h5") : "", last_state_label, *system, x, p, path_stage,
+                     scene, record);
+  };
+  using clock = std::chrono::steady_clock;
+  auto last_checkpoint = clock::now();
   constexpr double balance_limit = 2e-3;   // |Pi_ext - Pi_int - Pi_sa - D| / Pi_c0, the paper's bound
   bool balance_warned = false;
   auto on_point = [&](const analysis::LoadPoint& p, const discretization::Vector& x) {
@@ -144,16 +183,24 @@ std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaSh
     const int interval = scene.output.field_interval;
     if (interval > 0 && p.step % interval == 0)
       write_fields(x, stage == discretization::Master::rotation ? (theta_s + p.rotation) / degree : p.lift);
+    // Every 'Output/checkpoint interval' minutes of wall time, the state to resume from if the run is killed.
+    if (scene.output.checkpoint_minutes > 0.0) {
+      int due = root && clock::now() - last_checkpoint > std::chrono::duration<double>(60.0 * scene.output.checkpoint_minutes);
+      Teuchos::broadcast(*comm, 0, Teuchos::outArg(due));
+      if (due) {
+        write_last_state(x, p);
+        last_checkpoint = clock::now();
+        if (root) out << "checkpoint '" << last_state_label << "' written at step " << p.step << std::endl;
+      }
+    }
     stop_if_interrupted(*comm);   // a signal stops the run here, at a converged state, on every rank
   };
 
   // Detachment ends a path cleanly: the moment (rotation) or the pull (lift) has collapsed to under 1 % of its peak
   // with most of the pad released.
-  double initial_contact = path.last().contact_energy, initial_internal = 0.0;
   auto released_fraction = [&](const analysis::LoadPoint& p) {
     return 2.0 * (p.contact_energy - initial_contact) / reference_energy;
   };
-  double peak_moment = 0.0, peak_force = 0.0;
   if (options.contact)
     path.set_detachment_test([&](const analysis::LoadPoint& p) {
       peak_moment = std::max(peak_moment, p.moment);
@@ -191,23 +238,33 @@ std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaSh
     initial_contact = path.last().contact_energy;   // the energies count from this state
     initial_internal = path.last().internal_energy;
   }
-  if (root)
-    curve = std::make_unique<CurveWriter>(directory->file("curve.csv"), young, reference_energy, initial_internal,
-                                          initial_contact);
-  PathStage path_stage;   // where the path is: rotation, or lift from where
   if (!loading.restart_file.empty()) {
     auto x = system->create_vector();
-    const auto history = read_checkpoint(scene, *system, *x, path_stage);
+    auto history = read_checkpoint(scene, *system, *x, path_stage);
     if (adhesion.anchor_at_restart) system->set_contact_anchors(*x);   // r_a = 0 here: the same energy and forces
-    path.restart(*x, history);
+    if (scene.resume) {   // a stopped run goes on with its own baseline, peaks, wall time and increment
+      const auto record = read_run_record(scene);
+      initial_internal = record.initial_internal_energy;
+      initial_contact = record.initial_contact_energy;
+      peak_moment = record.peak_moment;
+      peak_force = record.peak_force;
+      history.seconds = record.seconds;
+      history.step_control = record.step_control;
+    }
+    path.restart(*x, history, scene.resume);
     if (path_stage.lifting) stage = discretization::Master::lift;
     if (root)
       out << "restart from '" << restart_label(loading) << "' of " << loading.restart_file << " (step "
           << history.step << ", u_z " << history.lift << " nm" << (path_stage.lifting ? ", in the lift" : "") << ")"
           << (adhesion.anchor_at_restart ? "; stiction anchors set at this state" : "") << "\n";
   }
-  if (root) curve->write(path.last(), stage_name(stage), theta_s);
-  write_fields(path.state(), (theta_s + path.last().rotation) / degree);
+  if (root)
+    curve = std::make_unique<CurveWriter>(directory->file("curve.csv"), young, reference_energy, initial_internal,
+                                          initial_contact, scene.resume ? path.last().step : -1);
+  if (!scene.resume) {   // a resumed run has its starting state in its curve and fields already
+    if (root) curve->write(path.last(), stage_name(stage), theta_s);
+    write_fields(path.state(), (theta_s + path.last().rotation) / degree);
+  }
   // The rotation, stopping at every checkpoint inclination on the way, then the lift. A signal ends either at a
   // converged state (Interrupted, on every rank together).
   std::optional<analysis::Failure> failure;
@@ -225,7 +282,9 @@ std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaSh
       if (failure || path.detached()) break;
       if (std::find(loading.checkpoints.begin(), loading.checkpoints.end(), stop) != loading.checkpoints.end()) {
         write_checkpoint(directory ? directory->file("checkpoints.h5") : "", checkpoint_label(stop), *system,
-                         path.state(), path.last(), path_stage, scene);
+                         path.state(), path.last(), path_stage, scene,
+                         RunRecord{initial_internal, initial_contact, peak_moment, peak_force, path.last().seconds,
+                                   fields ? fields->state_count() : 0, path.last().step_control});
         if (root) out << "checkpoint " << checkpoint_label(stop) << " written\n";
       }
     }
@@ -274,8 +333,7 @@ std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaSh
   else stop.failure = analysis::Failure{last.step, stage == Master::rotation ? (theta_s + last.rotation) / degree
                                                                                      : last.lift, 0.0,
                                         Interrupted(interrupted_by).what()};
-  write_checkpoint(directory ? directory->file("checkpoints.h5") : "", last_state_label, *system, path.state(), last,
-                   path_stage, scene);   // collective
+  write_last_state(path.state(), last);   // collective
   stop.checkpointed = true;
   return stop;
 }

@@ -2,7 +2,8 @@
 # An interrupted run never leaves a directory that looks complete. SIGTERM or SIGINT stops it at the next converged
 # state: exit 128 + signal, the partial results, a 'last state' checkpoint and FAILURE.txt in <directory>.incomplete;
 # a run restarted from that checkpoint reaches the same state as one never interrupted. kill -9 of one of two ranks
-# leaves only the staging directory <directory>.partial, which the next run replaces.
+# leaves only the staging directory <directory>.partial: `--resume` goes on from its last periodic checkpoint and
+# reproduces the uninterrupted curve; a run without --resume replaces it.
 # usage: interrupted_run.sh <spatula> <mpiexec> [mpiexec flags...]
 set -u
 app=$1
@@ -56,18 +57,67 @@ assert abs(theta_a - theta_b) < 1e-9 and abs(moment_a - moment_b) <= 1e-6 * abs(
 print(f'resumed: M_y {moment_b:.6f} at {theta_b} deg, uninterrupted {moment_a:.6f}')
 PY
 
-# kill -9 of one of two ranks: nothing that looks complete; the next run replaces the staging directory.
-rotation_scene killed 15 > killed.xml
-timeout 120 "$mpiexec" "${flags[@]}" -np 2 "$app" "$work/killed.xml" > killed.log 2>&1 &
-launcher=$!
-wait_for_step killed.log 3 || fail "kill -9: the run did not start"
-victim=$(pgrep -f "$app $work/killed.xml" | tail -n 1)
-[ -n "$victim" ] && kill -9 "$victim"
-wait "$launcher"
+# `--resume` goes on with the SIGINT run in its own directory (from <directory>.incomplete) to the same final state.
+"$app" stopped-INT.xml --resume > resumed-INT.log 2>&1 || { fail "--resume of the SIGINT run"; tail -3 resumed-INT.log; }
+[ -f stopped-INT/curve.csv ] && [ ! -e stopped-INT.incomplete ] || fail "--resume of the SIGINT run: not committed"
+[ "$(final_moment reference)" = "$(final_moment stopped-INT)" ] ||
+  python3 -c "import sys; a, b = (list(map(float, x.split(','))) for x in sys.argv[1:]); assert abs(a[1]-b[1]) <= 1e-6*abs(a[1])" \
+    "$(final_moment reference)" "$(final_moment stopped-INT)" || fail "--resume of the SIGINT run ends elsewhere"
+
+# kill -9 of one of two ranks: nothing that looks complete; `--resume` goes on from the last periodic checkpoint
+# (every converged step here) on two ranks and reproduces the uninterrupted curve row by row.
+every_step='<Parameter name="checkpoint interval" type="double" value="0.00001"/>'
+kill_a_rank() {   # scene name, step to wait for
+  timeout 120 "$mpiexec" "${flags[@]}" -np 2 "$app" "$work/$1.xml" > "$1.log" 2>&1 &
+  local launcher=$!
+  wait_for_step "$1.log" "$2" || fail "kill -9 ($1): the run did not start"
+  local victim
+  victim=$(pgrep -f "$app $work/$1.xml" | tail -n 1)
+  [ -n "$victim" ] && kill -9 "$victim"
+  wait "$launcher"
+}
+rotation_scene killed 15 "" "" "$every_step" > killed.xml
+kill_a_rank killed 3
 [ ! -e killed ] && [ ! -e killed.incomplete ] && [ -f killed.partial/.spatula-output ] || { fail "kill -9: left"; ls -A; }
-sed -i 's/value="15"/value="6"/' killed.xml
-"$app" killed.xml > killed-again.log 2>&1 || fail "the run after kill -9"
-[ -f killed/curve.csv ] && [ ! -e killed.partial ] || fail "the run after kill -9 did not replace the staging directory"
+grep -q "checkpoint 'last state' written" killed.log || fail "kill -9: no periodic checkpoint was written"
+timeout 120 "$mpiexec" "${flags[@]}" -np 2 "$app" "$work/killed.xml" --resume > resumed-killed.log 2>&1 ||
+  { fail "--resume after kill -9"; tail -3 resumed-killed.log; }
+grep -q "resuming the stopped run" resumed-killed.log || fail "--resume does not say what it resumes"
+[ -f killed/curve.csv ] && [ ! -e killed.partial ] && [ ! -e killed/FAILURE.txt ] || { fail "--resume: not committed"; ls -A; }
+/usr/bin/python3 - reference/curve.csv killed/curve.csv <<'PY' || fail "the resumed curve is not the uninterrupted one"
+import csv, sys
+a, b = (list(csv.DictReader(open(f))) for f in sys.argv[1:3])
+assert [r['step'] for r in a] == [r['step'] for r in b], ([r['step'] for r in a], [r['step'] for r in b])
+for ra, rb in zip(a, b):
+    for key in ('theta_y_deg', 'M_y_nNnm', 'Pi_int_1e-18J'):
+        x, y = float(ra[key]), float(rb[key])
+        assert abs(x - y) <= 1e-6 * max(1.0, abs(x)), (ra['step'], key, x, y)
+assert float(b[-1]['wall_s']) > float(b[1]['wall_s'])
+print(f'resumed after kill -9: {len(b)} rows, the uninterrupted curve to 1e-6')
+PY
+
+# A killed run started again without --resume is replaced; --resume with nothing stopped, or with another load,
+# is an input error that names what is wrong.
+rotation_scene killed-again 15 > killed-again.xml
+kill_a_rank killed-again 3
+[ -f killed-again.partial/.spatula-output ] || fail "kill -9 (again): no staging directory"
+sed -i 's/value="15"/value="6"/' killed-again.xml
+status=0
+"$app" killed-again.xml --resume > wrong-resume.log 2>&1 || status=$?
+[ "$status" -eq 2 ] && grep -q "no 'last state' checkpoint" wrong-resume.log ||
+  { fail "--resume without a periodic checkpoint: exit $status"; cat wrong-resume.log; }
+rotation_scene killed-again 6 "" "" "$every_step" > killed-again.xml
+"$app" killed-again.xml > killed-again.log 2>&1 || fail "the run after kill -9"
+[ -f killed-again/curve.csv ] && [ ! -e killed-again.partial ] || fail "the run after kill -9 did not replace the staging directory"
+status=0
+"$app" killed-again.xml --resume > nothing-to-resume.log 2>&1 || status=$?
+[ "$status" -eq 2 ] && grep -q "no stopped run to go on from" nothing-to-resume.log ||
+  { fail "--resume with nothing stopped: exit $status"; cat nothing-to-resume.log; }
+kill_a_rank killed 3; sed -i 's/value="15"/value="16"/' killed.xml
+status=0
+"$app" killed.xml --resume > other-load.log 2>&1 || status=$?
+[ "$status" -eq 2 ] && grep -q "other 'Loading' parameters" other-load.log ||
+  { fail "--resume with another load: exit $status"; cat other-load.log; }
 
 [ "$failures" -eq 0 ] && echo "interrupted runs: stopped cleanly, resumable, never complete-looking"
 exit "$failures"

@@ -1,5 +1,5 @@
 # Sourced by the app tests: rotation_scene <directory> <final theta_y> [<extra Adhesion parameters> [<extra Loading
-# parameters>]] prints a coarse frictionless rotation scene (steps of at most 2 deg, smallest 0.01, no mesh output).
+# parameters> [<extra Output parameters>]]] prints a coarse frictionless rotation scene (steps of at most 2 deg, smallest 0.01, no mesh output).
 rotation_scene() {
   cat <<XML
 <ParameterList>
@@ -14,7 +14,9 @@ rotation_scene() {
       <Parameter name="minimum" type="double" value="0.01"/></ParameterList>
   </ParameterList>
   <ParameterList name="Output"><Parameter name="directory" type="string" value="$1"/>
-    <Parameter name="write mesh" type="bool" value="false"/></ParameterList>
+    <Parameter name="write mesh" type="bool" value="false"/>
+    ${5:-}
+  </ParameterList>
 </ParameterList>
 XML
 }

@@ -122,7 +122,7 @@ std::optional<Failure> LoadPath::arc_length(Master controlled, double resume_abo
   LOCA::destroyGlobalData(global);
   if (reached > resume_above) return std::nullopt;
   Failure failure;
-  failure.step = static_cast<int>(points_.size());
+  failure.step = next_step();
   failure.load = reached / unit;
   failure.smallest_increment = parameters.minimum;
   std::ostringstream reason;

@@ -65,6 +65,20 @@ double FailedLoad::limit(double increment, double value) const
   return gap * cut_ >= smallest_ * (1 - 1e-12) ? std::min(increment, gap * cut_) : gap;
 }
 
+void FailedLoad::save(StepControllerState& state) const
+{
+  state.failed_load = load_;
+  state.failed_known = known_;
+  state.bisecting = bisecting_;
+}
+
+void FailedLoad::restore(const StepControllerState& state)
+{
+  load_ = state.failed_load;
+  known_ = state.failed_known;
+  bisecting_ = state.bisecting;
+}
+
 double FailedLoad::tolerance(double value)
 {
   return 1e-12 * std::max(1.0, std::abs(value));
@@ -114,7 +128,7 @@ LoadPoint LoadPath::measure(const Vector& x, int iterations, int negative_pivots
   auto& system = model_.system();
   const auto evaluation = system.evaluate(x, nullptr, false);
   LoadPoint point;
-  point.step = static_cast<int>(points_.size());
+  point.step = next_step();
   point.rotation = system.master(x, Master::rotation);
   point.lift = system.master(x, Master::lift);
   point.slide = system.master(x, Master::slide);
@@ -160,6 +174,11 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
   const double direction = target >= value ? 1.0 : -1.0;
   auto trial = system.create_vector();
   FailedLoad failed(direction, steps.minimum * unit, steps.cut);
+  if (resumed_control_) {   // a resumed run goes on where the stopped one was
+    if (resumed_control_->increment > 0.0) increment = resumed_control_->increment;
+    failed.restore(*resumed_control_);
+    resumed_control_.reset();
+  }
   while (!detached_ && direction * (target - value) > 1e-12 * std::max(1.0, std::abs(target))) {
     increment = failed.limit(std::min(increment, direction * (target - value)), value);
     // Secant predictor from the last two converged states (scaled to the new increment).
@@ -205,7 +224,7 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
           continue;
         }
         Failure failure;
-        failure.step = static_cast<int>(points_.size());
+        failure.step = next_step();
         failure.load = unreached / unit;
         failure.smallest_increment = increment / steps.cut / unit;
         failure.reason = result.failure;
@@ -234,7 +253,7 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
       }
       if (past_folds_ == PastFolds::stop) {
         Failure failure;
-        failure.step = static_cast<int>(points_.size());
+        failure.step = next_step();
         failure.load = (value + direction * increment) / unit;
         failure.smallest_increment = increment / unit;
         failure.reason = "a snap within the smallest step (it released " + load_text(2.0 * released) +
@@ -253,11 +272,13 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
     previous_increment_ = increment;
     value += direction * increment;
     failed.reached(value);
+    if (iterations <= steps.easy_iterations) increment = std::min(increment * steps.growth, steps.maximum * unit);
+    point.step_control.increment = increment;
+    failed.save(point.step_control);
     points_.push_back(point);
     if (log_ && tables_) *log_ << table.str();
     if (detachment_test_ && detachment_test_(points_.back())) detached_ = true;
     if (on_point) on_point(points_.back(), *x_);
-    if (iterations <= steps.easy_iterations) increment = std::min(increment * steps.growth, steps.maximum * unit);
   }
   return std::nullopt;
 }
@@ -288,12 +309,16 @@ std::optional<Failure> LoadPath::equilibrate(const Vector& guess, discretization
   return std::nullopt;
 }
 
-void LoadPath::restart(const Vector& x, const LoadPoint& point)
+void LoadPath::restart(const Vector& x, const LoadPoint& point, bool resume_step_control)
 {
   x_->assign(x);
   previous_->assign(x);
   previous_increment_ = 0.0;
   points_.clear();
+  step_offset_ = point.step;
+  if (resume_step_control) resumed_control_ = point.step_control;
+  else resumed_control_.reset();
+  if (point.seconds > 0.0) started_ = now() - point.seconds;   // a resumed run's clock goes on
   auto measured = measure(*x_, point.newton_iterations, point.negative_pivots);
   measured.step = point.step;
   measured.external_work = point.external_work;
@@ -450,7 +475,7 @@ std::optional<Failure> LoadPath::jump(Master controlled, double value, const Cal
     const auto last = system.evaluate(*x, nullptr, false);
     const double kept = before.contact_energy != 0.0 ? last.contact_energy / before.contact_energy : 1.0;
     Failure failure;
-    failure.step = static_cast<int>(points_.size());
+    failure.step = next_step();
     failure.load = value;
     failure.reason = "jump past the instability failed: " + *reason + "; the descent's last state kept " +
                      std::to_string(static_cast<int>(std::lround(100.0 * kept))) + " % of the adhesion energy";

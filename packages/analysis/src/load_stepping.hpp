@@ -34,6 +34,14 @@ struct StepParameters {
 // retry a whole failed Newton attempt. Once half the gap would be below the smallest increment, the load itself is
 // tried once more: it converges (Newton had only been too far away) or the instability is there. Loads and
 // increments in one unit; direction +1 or -1 (the sense of travel).
+// What the step controller knows at a converged state, so that a resumed run goes on as the uninterrupted one
+// would: the increment it tries next and the failed load ahead (internal units; increment 0: the initial one).
+struct StepControllerState {
+  double increment = 0.0;
+  double failed_load = 0.0;
+  bool failed_known = false, bisecting = false;
+};
+
 class FailedLoad {
 public:
   FailedLoad(double direction, double smallest, double cut);
@@ -44,6 +52,8 @@ public:
   // The increment to take from `value`: `increment`, or while bisecting half the gap to the failed load (the whole
   // gap once its half would be below the smallest increment).
   double limit(double increment, double value) const;
+  void save(StepControllerState& state) const;
+  void restore(const StepControllerState& state);
 
 private:
   static double tolerance(double value);
@@ -71,6 +81,7 @@ struct LoadPoint {
   bool after_jump = false;   // the first state on the far side of an instability
   double released = 0.0;     // energy released in that jump (Pi_int + Pi_c before minus after, at fixed load) [nN nm]
   double dissipated = 0.0;   // energy released in all jumps so far [nN nm]
+  StepControllerState step_control;   // the controller's state after this point (a resumed run's start)
 };
 
 // The jump past an instability at fixed load: the total potential energy Pi = Pi_int + Pi_c is minimized from the
@@ -159,8 +170,9 @@ public:
   std::optional<Failure> equilibrate(const Vector& guess, discretization::MasterControl control);
 
   // Starts the path from a converged state read from a checkpoint; `point` carries its history (step number,
-  // external work so far); reactions and energies are recomputed.
-  void restart(const Vector& x, const LoadPoint& point);
+  // external work so far; when positive the wall time and when given the step controller's state: a resumed run goes
+  // on as it would have); reactions and energies are recomputed. Later points are numbered on from its step.
+  void restart(const Vector& x, const LoadPoint& point, bool resume_step_control = false);
 
   // Accepts a converged state found outside `advance` (continuation, restart): it becomes the new last point.
   void accept(const Vector& x, int iterations, int negative_pivots, const Callback& on_point);
@@ -176,6 +188,9 @@ private:
   Teuchos::RCP<Vector> x_, previous_;
   double previous_increment_ = 0.0;
   std::vector<LoadPoint> points_;
+  int step_offset_ = 0;             // the step number of the path's first point (a restart's)
+  std::optional<StepControllerState> resumed_control_;   // carried by a restart (LoadPoint::step_control)
+  int next_step() const { return step_offset_ + static_cast<int>(points_.size()); }
   double started_ = 0.0;
   std::optional<ArcLengthParameters> arc_length_;
   PastFolds past_folds_ = PastFolds::stop;

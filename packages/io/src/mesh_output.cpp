@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 namespace spatula::io {
 
@@ -68,6 +69,33 @@ XdmfOutput::XdmfOutput(const std::string& directory, const std::string& name, co
   write_mesh_index();
 }
 
+XdmfOutput::XdmfOutput(const std::string& directory, const std::string& name, const mesh::HexMesh& mesh,
+                       int keep_states, const std::vector<std::string>& cell_scalar_names,
+                       const std::vector<std::string>& node_vector_names)
+    : directory_(directory), name_(name), h5_path_((std::filesystem::path(directory) / (name + ".h5")).string()),
+      h5_name_(name + ".h5"), nodes_(mesh.node_count()), elements_(mesh.element_count()),
+      contact_faces_(static_cast<std::int64_t>(mesh.sides(mesh::Boundary::contact).size()))
+{
+  for (const auto& x : mesh.coordinates) reference_.insert(reference_.end(), x.begin(), x.end());
+  Hdf5File file(h5_path_, Hdf5File::Mode::append);
+  if (file.read_doubles("/mesh/coordinates") != reference_)
+    throw std::runtime_error("'" + h5_path_ + "' holds another mesh");
+  for (int k = 0; k < keep_states; ++k) {
+    const std::string group = state_group(k);
+    for (const auto& field : cell_scalar_names)
+      if (!file.exists(group + "/" + field)) throw std::runtime_error("'" + h5_path_ + "' lacks " + group + "/" + field);
+    for (const auto& field : node_vector_names)
+      if (!file.exists(group + "/" + field)) throw std::runtime_error("'" + h5_path_ + "' lacks " + group + "/" + field);
+    const auto time = file.read_doubles(group + "/time");
+    if (time.size() != 1) throw std::runtime_error("'" + h5_path_ + "' lacks " + group + "/time");
+    times_.push_back(time[0]);
+    cell_scalar_names_.push_back(cell_scalar_names);
+    node_vector_names_.push_back(node_vector_names);
+  }
+  for (int k = keep_states; file.exists(state_group(k)); ++k) file.remove(state_group(k));
+  write_states_index();
+}
+
 void XdmfOutput::add_state(const FieldState& state)
 {
   const int index = state_count();
@@ -78,6 +106,7 @@ void XdmfOutput::add_state(const FieldState& state)
     for (std::size_t i = 0; i < deformed.size(); ++i) deformed[i] += state.displacement[i];
     file.write(group + "/coordinates", deformed, 3);
     file.write(group + "/displacement", state.displacement, 3);
+    file.write(group + "/time", std::vector<double>{state.time});
     for (const auto& [name, values] : state.cell_scalars) file.write(group + "/" + name, values);
     for (const auto& [name, values] : state.node_vectors) file.write(group + "/" + name, values, 3);
   }

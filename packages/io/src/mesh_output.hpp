@@ -30,6 +30,12 @@ public:
   XdmfOutput(const std::string& directory, const std::string& name, const mesh::HexMesh& mesh,
              const mesh::Partition& partition);
 
+  // Goes on with the output of a stopped run in `directory`: keeps its first `keep_states` states (each written with
+  // the cell scalars and node vectors named) and drops any later ones. Throws if the file cannot be read or lacks
+  // one of the kept states (then make a new output).
+  XdmfOutput(const std::string& directory, const std::string& name, const mesh::HexMesh& mesh, int keep_states,
+             const std::vector<std::string>& cell_scalar_names, const std::vector<std::string>& node_vector_names);
+
   void add_state(const FieldState& state);
   int state_count() const { return static_cast<int>(times_.size()); }
 

@@ -130,6 +130,30 @@ OutputDirectory::OutputDirectory(const std::string& path)
   make_ours(staging_);
 }
 
+OutputDirectory::OutputDirectory(const std::string& path, const std::string& stopped)
+    : path_(absolute_path(path).string()), staging_(path_ + ".partial"), incomplete_(path_ + ".incomplete")
+{
+  const fs::path from = absolute_path(stopped);
+  if ((from != fs::path(staging_) && from != fs::path(incomplete_)) || !ours(from))
+    throw std::runtime_error("'" + stopped + "' is not a stopped run of output directory '" + path + "'");
+  if (from != fs::path(staging_)) {
+    if (fs::exists(staging_)) remove_ours(staging_);
+    fs::rename(from, staging_);
+  }
+}
+
+std::string OutputDirectory::staging_path(const std::string& path) { return absolute_path(path).string() + ".partial"; }
+
+std::vector<std::string> OutputDirectory::stopped_runs(const std::string& path)
+{
+  std::vector<std::string> found;
+  for (const char* suffix : {".partial", ".incomplete"}) {
+    const fs::path candidate = sibling(absolute_path(path), suffix);
+    if (ours(candidate)) found.push_back(candidate.string());
+  }
+  return found;
+}
+
 OutputDirectory::~OutputDirectory()
 {
   if (open_) {

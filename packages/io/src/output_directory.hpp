@@ -10,6 +10,7 @@
 // Only the rank that writes (rank 0) creates one.
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace spatula::io {
 
@@ -25,6 +26,14 @@ public:
   static bool would_replace(const std::string& path, const std::string& file);
 
   explicit OutputDirectory(const std::string& path);   // creates the staging directory; throws if it cannot
+  // Goes on with a stopped run: `stopped` (one of `stopped_runs(path)`) becomes the staging directory again, with
+  // everything in it kept.
+  OutputDirectory(const std::string& path, const std::string& stopped);
+  // The directories a stopped run of this program left for `path`, newest kind first: the staging directory (the
+  // run was killed) and the incomplete one (it stopped on a signal or an error).
+  static std::vector<std::string> stopped_runs(const std::string& path);
+  // The staging directory of `path` ("<path>.partial", absolute).
+  static std::string staging_path(const std::string& path);
   ~OutputDirectory();                                  // abandons if neither committed nor abandoned
   OutputDirectory(const OutputDirectory&) = delete;
   OutputDirectory& operator=(const OutputDirectory&) = delete;
