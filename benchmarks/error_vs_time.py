@@ -65,6 +65,9 @@ SETS = {
 REFERENCE = [dict(), dict(refinement=2), dict(level='medium')]
 MOMENT_ANGLES = (15.0, 20.0, 25.0)
 QUANTITIES = ('P_max_nN', 'delta_u_z_nm', 'delta_Pi_ext_1e-18J')
+# This benchmark measures Delta u_z and Delta Pi_ext to the final detachment (as its recorded table was made), not to
+# the main snap the study tables use (scripts/curves.py, pull_off_summary).
+SUMMARY_KEY = {'delta_u_z_nm': 'final_delta_u_z_nm', 'delta_Pi_ext_1e-18J': 'final_delta_Pi_ext_1e-18J'}
 
 
 def configuration(overrides):
@@ -120,7 +123,7 @@ def measure(work, c):
     row['newton_iterations'] = int(sum(r['newton_iterations'] for r in rows))
     summary = pull_off_summary(work, directory)
     for q in QUANTITIES:
-        row[q] = summary[q]
+        row[q] = summary[SUMMARY_KEY.get(q, q)]
     for angle in MOMENT_ANGLES:
         row[f'M_y_{angle:g}'] = interpolate(rotation, 'theta_y_deg', angle, ['M_y_nNnm'])['M_y_nNnm']
     row['worst_balance'] = summary['worst_balance_error']
@@ -138,7 +141,7 @@ def from_study(directory):
     row['newton_iterations'] = int(sum(r['newton_iterations'] for r in rotation + lift))
     summary = pull_off_summary(directory, 'pull-off-60')
     for q in QUANTITIES:
-        row[q] = summary[q]
+        row[q] = summary[SUMMARY_KEY.get(q, q)]
     for angle in MOMENT_ANGLES:
         row[f'M_y_{angle:g}'] = interpolate(rotation, 'theta_y_deg', angle, ['M_y_nNnm'])['M_y_nNnm']
     row['worst_balance'] = summary['worst_balance_error']

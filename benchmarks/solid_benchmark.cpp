@@ -10,6 +10,7 @@
 // resulting element throughput, the effective memory traffic of the tangent fill against a STREAM-like triad
 // measured in the same run, and the time of one Newton iteration split into assembly and linear solve.
 #include "load_stepping.hpp"
+#include "parameter_validation.hpp"
 #include "spatula_mesher.hpp"
 
 #include <Teuchos_DefaultComm.hpp>
@@ -121,29 +122,28 @@ int main(int argc, char** argv)
   auto system = Teuchos::rcp(new discretization::DiscreteSystem(
       mesh, partition, discretization::spatula_constraints(mesh, {p1.x, p1.y, p1.z}, true), {}, comm));
   solvers::LinearSolverParameters linear_parameters;
-  const auto& solver_names = solvers::linear_solver_names();
-  const auto named = std::find(solver_names.begin(), solver_names.end(), solver_type);
-  if (named == solver_names.end()) {
+  const auto type = parameters::choice_named<solvers::LinearSolverType>(solver_type, solvers::linear_solver_names());
+  if (!type) {
     std::cerr << "solid_benchmark: unknown linear solver '" << solver_type << "'\n";
     return 2;
   }
-  linear_parameters.type = static_cast<solvers::LinearSolverType>(named - solver_names.begin());
+  linear_parameters.type = *type;
   std::string variant;   // the MUMPS options given, for the CSV
   bool factor_only = false;
   for (int a = 4; a < argc; ++a) {
     const std::string option = argv[a];
     const auto equals = option.find('=');
     const std::string key = option.substr(0, equals), value = option.substr(equals + 1);
-    const auto& names = solvers::mumps_ordering_names();
-    if (key == "ordering" && std::find(names.begin(), names.end(), value) != names.end())
-      linear_parameters.mumps.ordering =
-          static_cast<solvers::MumpsOrdering>(std::find(names.begin(), names.end(), value) - names.begin());
+    const auto ordering = parameters::choice_named<solvers::MumpsOrdering>(value, solvers::mumps_ordering_names());
+    const auto refactor = parameters::choice_named<solvers::RefactorRule>(value, solvers::refactor_rule_names());
+    if (key == "ordering" && ordering)
+      linear_parameters.mumps.ordering = *ordering;
     else if (key == "low-rank")
       linear_parameters.mumps.low_rank_tolerance = std::stod(value);
     else if (key == "lag")
       linear_parameters.lag = std::stoi(value);
-    else if (key == "refactor" && (value == "cost" || value == "lag"))
-      linear_parameters.refactor = value == "cost" ? solvers::RefactorRule::cost : solvers::RefactorRule::lag;
+    else if (key == "refactor" && refactor)
+      linear_parameters.refactor = *refactor;
     else if (key == "factor-only")
       factor_only = value == "1";
     else {

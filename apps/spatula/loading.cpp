@@ -22,57 +22,61 @@ const std::vector<std::string>& loading_types()
 
 void LoadingParameters::declare(Teuchos::ParameterList& loading)
 {
+  const LoadingParameters d;   // the defaults
   using parameters::Range;
-  parameters::declare_string(loading, "type", "none",
+  parameters::declare_string(loading, "type", parameters::name_of(d.type, loading_types()),
                              "none: mesh only; rotation: rotate the end face to theta_y; lift: rotate to theta_y, "
                              "then raise the face to 'final lift'",
                              loading_types());
-  parameters::declare_double(loading, "theta_y", 30.0, "shaft inclination to reach (rotation) or hold (lift) [deg]",
+  parameters::declare_double(loading, "theta_y", d.theta_y,
+                             "shaft inclination to reach (rotation) or hold (lift) [deg]",
                              Range::closed(-180.0, 180.0));
-  parameters::declare_double(loading, "final lift", 100.0, "u_z of the end face centre at the end of a lift [nm]",
+  parameters::declare_double(loading, "final lift", d.final_lift,
+                             "u_z of the end face centre at the end of a lift [nm]",
                              Range::closed(-1e4, 1e4));
-  parameters::declare_bool(loading, "final lift relative", false,
+  parameters::declare_bool(loading, "final lift relative", d.lift_relative,
                            "count 'final lift' from the u_z where the lift starts, not from the undeformed state");
-  parameters::declare_bool(loading, "free lift during rotation", true,
+  parameters::declare_bool(loading, "free lift during rotation", d.free_lift,
                            "zero net Z force on the end face while rotating (false: u_z held at 0)");
-  parameters::declare_bool(loading, "free slide during lift", false,
+  parameters::declare_bool(loading, "free slide during lift", d.free_slide,
                            "zero net X force on the end face while lifting (false: u_x held); needs a law that holds "
                            "the pad tangentially (stiction): on a frictionless substrate the spatula could slide freely");
-  parameters::declare_bool(loading, "hold contact surface", false,
+  parameters::declare_bool(loading, "hold contact surface", d.hold_contact_surface,
                            "hold the pad's contact surface at Z = 0 (a structural check without adhesion)");
-  // Smallest and largest increments: those of every validated run; in the error benchmark's step set (coarse
-  // pull-off at 60 deg) 2 deg / 5 nm took less CPU than half or twice that, with the same P_max to 3e-5.
   analysis::StepParameters::declare(
-      parameters::declare_sublist(loading, "Rotation Steps", "increments of theta_y [deg]"), 1.0, 0.01, 2.0);
-  analysis::StepParameters::declare(
-      parameters::declare_sublist(loading, "Lift Steps", "increments of u_z [nm]"), 2.0, 0.01, 5.0);
-  parameters::declare_string(loading, "past instabilities", "jump",
+      parameters::declare_sublist(loading, "Rotation Steps", "increments of theta_y [deg]"), d.rotation_steps);
+  analysis::StepParameters::declare(parameters::declare_sublist(loading, "Lift Steps", "increments of u_z [nm]"),
+                                    d.lift_steps);
+  parameters::declare_string(loading, "past instabilities",
+                             parameters::name_of(d.past_instabilities, instability_methods()),
                              "where no equilibrium follows at a larger load (a snap): stop; jump at fixed load to the "
                              "next stable state by energy descent; or follow the path round the fold by arc-length "
                              "continuation (LOCA)",
                              instability_methods());
-  parameters::declare_string(loading, "restart file", "",
+  parameters::declare_string(loading, "restart file", d.restart_file,
                              "checkpoints.h5 of an earlier run to start from (empty: the undeformed spatula)");
-  parameters::declare_double(loading, "restart theta_y", 60.0, "the checkpoint to start from [deg]",
+  parameters::declare_double(loading, "restart theta_y", d.restart_theta_y, "the checkpoint to start from [deg]",
                              Range::closed(-180.0, 180.0));
-  parameters::declare_string(loading, "restart from", "checkpoint",
+  parameters::declare_string(loading, "restart from", d.restart_from_last_state ? "last state" : "checkpoint",
                              "which state of the restart file: the checkpoint at 'restart theta_y', or the last "
                              "converged state a stopped (interrupted or failed) run left",
                              {"checkpoint", "last state"});
   parameters::declare_string(loading, "checkpoints at theta_y", "",
                              "comma-separated inclinations [deg] where a rotation writes checkpoints (e.g. 45,60)");
   auto& jump = parameters::declare_sublist(loading, "Jump", "energy descent past an instability");
-  parameters::declare_int(jump, "maximum iterations", 500, "iterations per jump", Range::closed(1, 100000));
-  parameters::declare_double(jump, "step balance tolerance", 1e-4,
+  parameters::declare_int(jump, "maximum iterations", d.jump.maximum_iterations, "iterations per jump",
+                          Range::closed(1, 100000));
+  parameters::declare_double(jump, "step balance tolerance", d.step_balance_tolerance,
                              "largest energy released by one converged load step, over Pi_c0: a step releasing more "
                              "crossed a snap (Newton landed on another branch) and is cut back, or at the smallest "
                              "increment counted as a jump; 0 switches the check off (scenes with adhesion only)",
                              Range::closed(0.0, 1.0));
   auto& arc = parameters::declare_sublist(loading, "Arc Length", "LOCA arc-length steps (scaled norm)");
-  parameters::declare_double(arc, "initial", 0.02, "first step", Range::positive());
-  parameters::declare_double(arc, "minimum", 1e-5, "smallest step", Range::positive());
-  parameters::declare_double(arc, "maximum", 0.5, "largest step", Range::positive());
-  parameters::declare_int(arc, "maximum steps", 200, "steps per fold", Range::closed(1, 100000));
+  const auto& a = d.arc_length_steps;
+  parameters::declare_double(arc, "initial", a.initial, "first step", Range::positive());
+  parameters::declare_double(arc, "minimum", a.minimum, "smallest step", Range::positive());
+  parameters::declare_double(arc, "maximum", a.maximum, "largest step", Range::positive());
+  parameters::declare_int(arc, "maximum steps", a.maximum_steps, "steps per fold", Range::closed(1, 100000));
 }
 
 LoadingParameters LoadingParameters::from(const Teuchos::ParameterList& loading)

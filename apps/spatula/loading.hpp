@@ -23,10 +23,13 @@ struct LoadingParameters {
   bool free_lift = true;          // while rotating: zero net Z force on the face (else u_z held at 0)
   bool free_slide = false;        // while lifting: zero net X force on the face (else u_x held)
   bool hold_contact_surface = false;   // the pad's bottom held at Z = 0 (a check without adhesion)
-  analysis::StepParameters rotation_steps, lift_steps;
+  // Smallest and largest increments: those of every validated run; in the error benchmark's step set (coarse
+  // pull-off at 60 deg) 2 deg / 5 nm took less CPU than half or twice that, with the same P_max to 3e-5.
+  analysis::StepParameters rotation_steps{1.0, 0.01, 2.0};   // [deg]
+  analysis::StepParameters lift_steps{2.0, 0.01, 5.0};       // [nm]
   analysis::LoadPath::PastFolds past_instabilities = analysis::LoadPath::PastFolds::jump;
   std::string restart_file;               // start from a checkpoint of an earlier run (empty: undeformed)
-  double restart_theta_y = 0.0;           // which one [deg]
+  double restart_theta_y = 60.0;          // which one [deg]
   bool restart_from_last_state = false;   // the last converged state of a stopped run instead
   std::vector<double> checkpoints;        // inclinations [deg] at which a rotation leaves checkpoints
   analysis::JumpParameters jump;

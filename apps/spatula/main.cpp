@@ -143,7 +143,9 @@ void write_failure_note(const spatula::io::OutputDirectory& directory, const spa
     note << ", not reached after cutting the increment to " << failure.smallest_increment;
   note << "\nresults up to the last converged state: curve.csv, mesh_states.xmf (this directory)\n";
   if (stop.checkpointed)
-    note << "to go on from the last converged state, run the scene again with\n"
+    note << "to go on from the last converged state in this directory (the curve and fields continued):\n"
+         << "  spatula <the scene> --resume\n"
+         << "to start another scene from that state instead, run it with\n"
          << "  Loading/restart file = '" << directory.incomplete_path() << "/checkpoints.h5'\n"
          << "  Loading/restart from = 'last state'\n"
          << "and another Output/directory (a run into '" << directory.final_path()
@@ -167,6 +169,39 @@ std::unique_ptr<spatula::io::XdmfOutput> open_fields(const spatula::io::OutputDi
     }
   }
   return std::make_unique<XdmfOutput>(directory.file(""), "mesh", run.mesh, run.partition);
+}
+
+// The output directory (new, or a stopped run's again with --resume), the validated scene and mesh summary in it,
+// and the field output (rank 0).
+void open_output(const Checked& run, const spatula::mesh::MeshSummary& summary,
+                 std::unique_ptr<spatula::io::OutputDirectory>& directory,
+                 std::unique_ptr<spatula::io::XdmfOutput>& fields, std::ostream& out)
+{
+  using namespace spatula;
+  Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: output"));
+  const auto& scene = *run.scene;
+  if (scene.resume) {
+    directory = std::make_unique<io::OutputDirectory>(scene.output.directory, run.resume_from);
+    std::filesystem::remove(directory->file("FAILURE.txt"));
+  } else {
+    directory = std::make_unique<io::OutputDirectory>(scene.output.directory);
+  }
+  parameters::write_xml_file(scene.validated, directory->file("scene.xml"));
+  write_summary_files(*directory, summary, *run.shape);
+  if (scene.output.write_mesh || scene.loading.type != app::LoadingType::none)
+    fields = open_fields(*directory, run, scene, out);
+}
+
+// A run that stopped before the end of its load path: FAILURE.txt, the directory renamed <directory>.incomplete,
+// and why on the standard error.
+void leave_stopped_run(spatula::io::OutputDirectory& directory, const spatula::app::Stop& stop, int exit_code)
+{
+  write_failure_note(directory, stop, exit_code);
+  directory.abandon();
+  std::cerr << "spatula: " << (stop.signal ? "interrupted" : "solver failure") << " at step " << stop.failure.step
+            << ", " << spatula::app::stage_name(stop.stage) << " = " << stop.failure.load << ": " << stop.failure.reason
+            << "\nspatula: results up to the last converged state, a checkpoint to go on from and FAILURE.txt (how) "
+            << "are in " << directory.incomplete_path() << "/\n";
 }
 
 }  // namespace
@@ -211,24 +246,9 @@ int main(int argc, char** argv)
     }
 
     auto& scene = *run.scene;
-    app::agree(*comm, [&] {
-      Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: output"));
-      if (scene.resume) {
-        directory = std::make_unique<io::OutputDirectory>(scene.output.directory, run.resume_from);
-        std::filesystem::remove(directory->file("FAILURE.txt"));
-      } else {
-        directory = std::make_unique<io::OutputDirectory>(scene.output.directory);
-      }
-      parameters::write_xml_file(scene.validated, directory->file("scene.xml"));
-      write_summary_files(*directory, summary, *run.shape);
-      if (scene.resume) scene.loading.restart_file = app::resumed_checkpoint_file(scene);
-      if (scene.output.write_mesh || scene.loading.type != app::LoadingType::none)
-        fields = open_fields(*directory, run, scene, out);
-    }, true);
-    if (scene.resume) {
-      scene.loading.restart_file = app::resumed_checkpoint_file(scene);
-      if (root) out << "spatula: resuming the stopped run " << run.resume_from << "\n";
-    }
+    if (scene.resume) scene.loading.restart_file = app::resumed_checkpoint_file(scene);
+    app::agree(*comm, [&] { open_output(run, summary, directory, fields, out); }, true);
+    if (root && scene.resume) out << "spatula: resuming the stopped run " << run.resume_from << "\n";
     if (scene.loading.type != app::LoadingType::none) {
       const auto stop =
           app::run_simulation(scene, *run.shape, run.mesh, run.partition, comm, directory.get(), fields.get(), out);
@@ -236,12 +256,7 @@ int main(int argc, char** argv)
         const int exit_code = stop->signal ? 128 + stop->signal : 1;
         if (root) {
           fields.reset();
-          write_failure_note(*directory, *stop, exit_code);
-          directory->abandon();
-          std::cerr << "spatula: " << (stop->signal ? "interrupted" : "solver failure") << " at step "
-                    << stop->failure.step << ", " << app::stage_name(stop->stage) << " = " << stop->failure.load << ": "
-                    << stop->failure.reason << "\nspatula: results up to the last converged state, a checkpoint "
-                    << "to go on from and FAILURE.txt (how) are in " << directory->incomplete_path() << "/\n";
+          leave_stopped_run(*directory, *stop, exit_code);
         }
         return exit_code;
       }

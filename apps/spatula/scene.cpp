@@ -6,18 +6,20 @@ namespace spatula::app {
 
 void OutputParameters::declare(Teuchos::ParameterList& output)
 {
-  parameters::declare_string(output, "directory", "spatula-output",
+  const OutputParameters d;   // the defaults
+  parameters::declare_string(output, "directory", d.directory,
                              "directory for all results, written as <directory>.partial and renamed at the end of the "
                              "run (<directory>.incomplete if it fails); never the working directory, one above it, or a "
                              "file or folder that spatula did not write");
-  parameters::declare_bool(output, "overwrite", true,
+  parameters::declare_bool(output, "overwrite", d.overwrite,
                            "replace an earlier result of spatula in 'directory' (false: refuse any existing directory)");
-  parameters::declare_bool(output, "write mesh", true, "write the mesh as HDF5 + XDMF");
-  parameters::declare_int(output, "field interval", 0,
+  parameters::declare_bool(output, "write mesh", d.write_mesh, "write the mesh as HDF5 + XDMF");
+  parameters::declare_int(output, "field interval", d.field_interval,
                           "write displacement and I1 fields every this many converged steps (0: first and last)",
                           parameters::Range::closed(0, 100000));
-  parameters::declare_bool(output, "convergence tables", false, "print the Newton iterations of every step");
-  parameters::declare_double(output, "checkpoint interval", 10.0,
+  parameters::declare_bool(output, "convergence tables", d.convergence_tables,
+                           "print the Newton iterations of every step");
+  parameters::declare_double(output, "checkpoint interval", d.checkpoint_minutes,
                              "wall-clock minutes between checkpoints of the last converged state (checkpoints.h5, "
                              "'last state'), from which 'spatula scene.xml --resume' goes on after the run was killed "
                              "(0: only when the run stops on a signal or a failure)",

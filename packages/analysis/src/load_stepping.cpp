@@ -84,16 +84,16 @@ double FailedLoad::tolerance(double value)
   return 1e-12 * std::max(1.0, std::abs(value));
 }
 
-void StepParameters::declare(Teuchos::ParameterList& list, double initial, double minimum, double maximum)
+void StepParameters::declare(Teuchos::ParameterList& list, const StepParameters& d)
 {
   using parameters::Range;
-  parameters::declare_double(list, "initial", initial, "first increment", Range::positive());
-  parameters::declare_double(list, "minimum", minimum, "smallest increment before giving up", Range::positive());
-  parameters::declare_double(list, "maximum", maximum, "largest increment", Range::positive());
-  parameters::declare_int(list, "easy iterations", 4, "grow the increment after steps with at most this many "
-                          "Newton iterations", Range::closed(1, 100));
-  parameters::declare_double(list, "growth", 1.5, "increment growth factor", {1.0, 10.0, false, false});
-  parameters::declare_double(list, "cut", 0.5, "increment factor after a failed step", {0.0, 1.0, true, true});
+  parameters::declare_double(list, "initial", d.initial, "first increment", Range::positive());
+  parameters::declare_double(list, "minimum", d.minimum, "smallest increment before giving up", Range::positive());
+  parameters::declare_double(list, "maximum", d.maximum, "largest increment", Range::positive());
+  parameters::declare_int(list, "easy iterations", d.easy_iterations, "grow the increment after steps with at most "
+                          "this many Newton iterations", Range::closed(1, 100));
+  parameters::declare_double(list, "growth", d.growth, "increment growth factor", {1.0, 10.0, false, false});
+  parameters::declare_double(list, "cut", d.cut, "increment factor after a failed step", {0.0, 1.0, true, true});
 }
 
 StepParameters StepParameters::from(const Teuchos::ParameterList& list, const std::string& path)
@@ -165,9 +165,7 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
   auto& system = model_.system();
   control.prescribed[static_cast<int>(controlled)] = true;
   system.set_control(control);
-  // The rotation master is the end face's rotation from the initial inclination (theta_y - theta_s), in degrees.
-  const char* name = controlled == Master::rotation ? "rotation theta_y - theta_s" : controlled == Master::lift ? "lift" : "slide";
-
+  const char* name = load_name(controlled);
   double value = system.master(*x_, controlled);
   double increment = steps.initial * unit;
   previous_increment_ = 0.0;   // no predictor across a change of the controlled load
@@ -179,56 +177,26 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
     failed.restore(*resumed_control_);
     resumed_control_.reset();
   }
+  const double smallest = steps.minimum * unit * (1 - 1e-12);
   while (!detached_ && direction * (target - value) > 1e-12 * std::max(1.0, std::abs(target))) {
     increment = failed.limit(std::min(increment, direction * (target - value)), value);
-    // Secant predictor from the last two converged states (scaled to the new increment).
-    trial->assign(*x_);
-    if (previous_increment_ > 0.0) trial->update(increment / previous_increment_, *x_, -increment / previous_increment_, *previous_, 1.0);
-    system.set_master(*trial, controlled, value + direction * increment);
+    const double load = value + direction * increment;
+    predict(*trial, controlled, load, increment);
     std::ostringstream table;
     const auto result = newton_.solve(*trial, tables_ ? &table : nullptr, failed.known());
     if (!result.converged) {
-      if (log_) *log_ << table.str() << "  step to " << name << " = " << load_text((value + direction * increment) / unit)
-                      << " failed (" << result.failure << "); cutting the increment\n";
-      failed.failed(value + direction * increment);
+      if (log_) *log_ << table.str() << "  step to " << name << " = " << load_text(load / unit) << " failed ("
+                      << result.failure << "); cutting the increment\n";
+      failed.failed(load);
       increment *= steps.cut;
-      if (increment < steps.minimum * unit * (1 - 1e-12)) {
+      if (increment < smallest) {   // no equilibrium near the last one: past the fold, or stop
         const double unreached = value + direction * increment / steps.cut;
-        if (past_folds_ == PastFolds::jump) {   // an instability: jump at the unreached load to the far side
-          if (log_) *log_ << "  " << name << " = " << load_text(unreached / unit) << ": no equilibrium near the last one "
-                          << "(an instability); jumping to the next stable state\n";
-          auto failure = jump(controlled, unreached, on_point);
-          system.set_control(control);
-          if (failure) failure->load = unreached / unit;   // in the load's unit, as every other failure
-          if (failure) return failure;
-          value = unreached;
-          failed.forget();
-          increment = steps.initial * unit;
-          previous_increment_ = 0.0;
-          continue;
-        }
-        if (past_folds_ == PastFolds::arc_length && direction > 0) {   // go round the fold, resume beyond
-          if (log_) *log_ << "  " << name << " = " << load_text(unreached / unit) << " not reachable on this branch: arc-length "
-                          << "continuation round the fold\n";
-          auto failure = arc_length(controlled, unreached, control, *arc_length_, unit,
-                                    [&](const LoadPoint& p, const Vector& x) {
-            if (detachment_test_ && detachment_test_(p)) detached_ = true;
-            if (on_point) on_point(p, x);
-          });
-          system.set_control(control);
-          if (failure && !detached_) return failure;
-          value = system.master(*x_, controlled);
-          failed.forget();
-          increment = steps.initial * unit;
-          previous_increment_ = 0.0;
-          continue;
-        }
-        Failure failure;
-        failure.step = next_step();
-        failure.load = unreached / unit;
-        failure.smallest_increment = increment / steps.cut / unit;
-        failure.reason = result.failure;
-        return failure;
+        auto beyond = pass_fold(controlled, unreached, control, direction, increment / steps.cut, unit, result.failure,
+                                on_point);
+        if (auto* failure = std::get_if<Failure>(&beyond)) return *failure;
+        value = std::get<double>(beyond);
+        failed.forget();
+        increment = steps.initial * unit;
       }
       previous_increment_ = 0.0;   // no predictor after a failure
       continue;
@@ -236,17 +204,15 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
     const int iterations = result.iterations.empty() ? 0 : result.iterations.back().iteration;
     const int pivots = result.iterations.empty() ? -1 : result.iterations.back().negative_pivots;
     auto point = measure(*trial, iterations, pivots);
-    // The energy the step released: work of the reactions minus the change of Pi_int + Pi_c. Near zero on a
-    // smooth path; large when Newton crossed a snap within the step and landed on another branch.
-    const auto& last = points_.back();
-    const double released = (point.external_work - last.external_work) -
-                            (point.internal_energy + point.contact_energy - last.internal_energy - last.contact_energy);
+    // The energy the step released: near zero on a smooth path; large when Newton crossed a snap within the step
+    // and landed on another branch.
+    const double released = released_energy(point);
     if (jump_.step_balance_tolerance > 0.0 && std::abs(released) > jump_.step_balance_tolerance) {
-      if (increment * steps.cut >= steps.minimum * unit * (1 - 1e-12)) {
-        if (log_) *log_ << table.str() << "  step to " << name << " = " << load_text((value + direction * increment) / unit)
+      if (increment * steps.cut >= smallest) {
+        if (log_) *log_ << table.str() << "  step to " << name << " = " << load_text(load / unit)
                         << " converged on another branch (the step released " << load_text(2.0 * released)
                         << " nN nm, full spatula): a snap within the step; cutting the increment\n";
-        failed.failed(value + direction * increment);
+        failed.failed(load);
         increment *= steps.cut;
         previous_increment_ = 0.0;
         continue;
@@ -254,7 +220,7 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
       if (past_folds_ == PastFolds::stop) {
         Failure failure;
         failure.step = next_step();
-        failure.load = (value + direction * increment) / unit;
+        failure.load = load / unit;
         failure.smallest_increment = increment / unit;
         failure.reason = "a snap within the smallest step (it released " + load_text(2.0 * released) +
                          " nN nm, full spatula) and instabilities are set to stop";
@@ -263,24 +229,91 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
       point.after_jump = true;   // the smallest step still crosses the snap: it is the jump
       point.released = released;
       point.dissipated += released;
-      if (log_) *log_ << "  snap within the smallest step to " << name << " = "
-                      << load_text((value + direction * increment) / unit) << ": counted as a jump, released "
-                      << load_text(2.0 * released) << " nN nm (full spatula)\n";
+      if (log_) *log_ << "  snap within the smallest step to " << name << " = " << load_text(load / unit)
+                      << ": counted as a jump, released " << load_text(2.0 * released) << " nN nm (full spatula)\n";
     }
-    previous_->assign(*x_);
-    x_->assign(*trial);
-    previous_increment_ = increment;
+    const double taken = increment;
     value += direction * increment;
     failed.reached(value);
     if (iterations <= steps.easy_iterations) increment = std::min(increment * steps.growth, steps.maximum * unit);
     point.step_control.increment = increment;
     failed.save(point.step_control);
-    points_.push_back(point);
-    if (log_ && tables_) *log_ << table.str();
-    if (detachment_test_ && detachment_test_(points_.back())) detached_ = true;
-    if (on_point) on_point(points_.back(), *x_);
+    take_step(*trial, point, taken, table.str(), on_point);
   }
   return std::nullopt;
+}
+
+const char* LoadPath::load_name(Master controlled)
+{
+  // The rotation master is the end face's rotation from the initial inclination (theta_y - theta_s).
+  return controlled == Master::rotation ? "rotation theta_y - theta_s" : controlled == Master::lift ? "lift" : "slide";
+}
+
+void LoadPath::predict(Vector& trial, Master controlled, double load, double increment) const
+{
+  // Secant predictor from the last two converged states (scaled to the new increment).
+  trial.assign(*x_);
+  if (previous_increment_ > 0.0)
+    trial.update(increment / previous_increment_, *x_, -increment / previous_increment_, *previous_, 1.0);
+  model_.system().set_master(trial, controlled, load);
+}
+
+double LoadPath::released_energy(const LoadPoint& point) const
+{
+  // The work of the reactions (trapezoidal rule) minus the change of Pi_int + Pi_c since the last point.
+  const auto& last = points_.back();
+  return (point.external_work - last.external_work) -
+         (point.internal_energy + point.contact_energy - last.internal_energy - last.contact_energy);
+}
+
+std::variant<double, Failure> LoadPath::pass_fold(Master controlled, double unreached,
+                                                  const discretization::MasterControl& control, double direction,
+                                                  double smallest_increment, double unit,
+                                                  const std::string& newton_failure, const Callback& on_point)
+{
+  auto& system = model_.system();
+  const char* name = load_name(controlled);
+  if (past_folds_ == PastFolds::jump) {   // an instability: jump at the unreached load to the far side
+    if (log_) *log_ << "  " << name << " = " << load_text(unreached / unit) << ": no equilibrium near the last one "
+                    << "(an instability); jumping to the next stable state\n";
+    auto failure = jump(controlled, unreached, on_point);
+    system.set_control(control);
+    if (failure) {
+      failure->load = unreached / unit;   // in the load's unit, as every other failure
+      return *failure;
+    }
+    return unreached;
+  }
+  if (past_folds_ == PastFolds::arc_length && direction > 0) {   // go round the fold, resume beyond
+    if (log_) *log_ << "  " << name << " = " << load_text(unreached / unit) << " not reachable on this branch: "
+                    << "arc-length continuation round the fold\n";
+    auto failure = arc_length(controlled, unreached, control, *arc_length_, unit,
+                              [&](const LoadPoint& p, const Vector& x) {
+                                if (detachment_test_ && detachment_test_(p)) detached_ = true;
+                                if (on_point) on_point(p, x);
+                              });
+    system.set_control(control);
+    if (failure && !detached_) return *failure;
+    return system.master(*x_, controlled);
+  }
+  Failure failure;
+  failure.step = next_step();
+  failure.load = unreached / unit;
+  failure.smallest_increment = smallest_increment / unit;
+  failure.reason = newton_failure;
+  return failure;
+}
+
+void LoadPath::take_step(const Vector& state, const LoadPoint& point, double increment, const std::string& table,
+                         const Callback& on_point)
+{
+  previous_->assign(*x_);
+  x_->assign(state);
+  previous_increment_ = increment;
+  points_.push_back(point);
+  if (log_ && tables_) *log_ << table;
+  if (detachment_test_ && detachment_test_(points_.back())) detached_ = true;
+  if (on_point) on_point(points_.back(), *x_);
 }
 
 void LoadPath::accept(const Vector& x, int iterations, int negative_pivots, const Callback& on_point)
@@ -328,136 +361,158 @@ void LoadPath::restart(const Vector& x, const LoadPoint& point, bool resume_step
 
 // Minimizes Pi at the current load from x (shifted Newton + expanding line search on Pi), then confirms with plain
 // Newton. Returns the iterations used, or the reason it failed.
-std::variant<int, std::string> LoadPath::descend(Vector& x)
+// The state of one energy descent: the shift eta of the tangent (relative to `scale`, the mean diagonal), where its
+// iterations went (for the diagnosis of a descent that does not settle) and their table.
+struct LoadPath::Descent {
+  double eta = 0.0, scale = 0.0;
+  int iteration = 0;
+  int indefinite = 0, no_decrease = 0, accepted = 0;
+  bool unshifted_tried = false;   // at the current state, with a small gradient
+  double residual = 0.0;          // |f| at the last iteration [nN]
+  std::ostringstream table;
+
+  void row(bool tables, int negative, double residual_norm, double step, double energy)
+  {
+    if (!tables) return;
+    table << "  descent  " << std::setw(9) << iteration << "  " << std::setw(9) << eta / scale << "  " << std::setw(7)
+          << negative << "  " << std::setw(9) << residual_norm << "  " << std::setw(9) << step << "  "
+          << std::setprecision(8) << energy << std::setprecision(2) << "\n";
+  }
+};
+
+solvers::MumpsSolver& LoadPath::descent_solver()
 {
-  auto& system = model_.system();
-  auto f = system.create_vector(), direction = system.create_vector(), trial = system.create_vector();
   if (!descent_solver_) {   // the user's MUMPS options, but exact LDL^T factors: the descent needs their inertia
     auto parameters = newton_.linear_solver().parameters().mumps;
     parameters.symmetric = true;
     parameters.low_rank_tolerance = 0.0;
-    descent_solver_ = std::make_unique<solvers::MumpsSolver>(system.owned_map(), parameters);
+    descent_solver_ = std::make_unique<solvers::MumpsSolver>(model_.system().owned_map(), parameters);
   }
-  auto& mumps = *descent_solver_;
-  auto energy_at = [&](const Vector& state, bool& admissible) {
-    const auto evaluation = system.evaluate(state, nullptr, false);
-    admissible = evaluation.admissible;
-    return evaluation.internal_energy + evaluation.contact_energy;
-  };
-  double eta = 0.0, scale = 0.0;
-  int iteration = 0;
-  // Where the iterations went (for the diagnosis of a descent that does not settle), and a table of them.
-  int indefinite = 0, no_decrease = 0, accepted = 0;
-  bool unshifted_tried = false;   // at the current state, with a small gradient
-  auto start = system.create_vector();
+  return *descent_solver_;
+}
+
+double LoadPath::descent_line_search(const Vector& x, const Vector& direction, double energy, double slope,
+                                     double& best_energy) const
+{
+  // Armijo's condition on Pi, with expansion: negative curvature means going further lowers Pi more.
+  auto& system = model_.system();
+  auto trial = system.create_vector();
+  double step = 1.0, best_step = 0.0;
+  best_energy = energy;
+  for (int trial_count = 0; trial_count < 30; ++trial_count) {
+    trial->update(1.0, x, step, direction, 0.0);
+    const auto evaluation = system.evaluate(*trial, nullptr, false);
+    const double value_at = evaluation.internal_energy + evaluation.contact_energy;
+    const bool sufficient = evaluation.admissible && value_at <= energy + 1e-4 * step * slope;
+    if (sufficient && value_at < best_energy) {
+      best_energy = value_at;
+      best_step = step;
+      if (step >= 1.0 && step < 64.0) {   // still descending: try further
+        step *= 2.0;
+        continue;
+      }
+      break;
+    }
+    if (best_step > 0.0) break;   // the expansion went too far: keep the best
+    step *= 0.5;
+  }
+  return best_step;
+}
+
+std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descent& d, double small_gradient)
+{
+  auto& system = model_.system();
+  auto& mumps = descent_solver();
+  auto f = system.create_vector(), direction = system.create_vector();
+  for (; d.iteration < jump_.maximum_iterations; ++d.iteration) {
+    system.set_damping(d.eta, Teuchos::rcpFromRef(x));   // anchored at x: a pure shift of the tangent, f unchanged
+    const auto evaluation = system.evaluate(x, f.get(), true);
+    system.set_damping(0.0, Teuchos::null);
+    if (!evaluation.admissible) return std::string("an element inverted during the energy descent");
+    if (d.scale == 0.0) d.scale = system.mean_diagonal();
+    const double energy = evaluation.internal_energy + evaluation.contact_energy;
+    const double residual = f->norm2();
+    int negative = 0;
+    try {
+      mumps.factor(*system.jacobian());
+      negative = mumps.statistics().negative_pivots;
+    } catch (const std::exception&) {
+      negative = 1;   // singular: treat like indefinite
+    }
+    if (negative > 0) {   // not a descent direction yet: shift more
+      d.row(tables_, negative, residual, 0.0, energy);
+      ++d.indefinite;
+      d.eta = d.eta == 0.0 ? 1e-6 * d.scale : jump_.shift_growth * d.eta;
+      continue;
+    }
+    // Near a stable minimum (positive definite tangent, small gradient): plain Newton finishes. The energy alone
+    // cannot resolve the last digits (its changes fall below its rounding), the gradient can. A small gradient found
+    // with a shift is tested once without it: is the unshifted tangent positive definite there? (Without this a
+    // descent that has reached the minimum keeps raising the shift, since no step can lower Pi any more.)
+    d.residual = residual;
+    if (residual < small_gradient && (d.eta == 0.0 || !d.unshifted_tried)) {
+      d.row(tables_, negative, residual, 0.0, energy);
+      if (d.eta == 0.0) return std::nullopt;
+      d.unshifted_tried = true;
+      d.eta = 0.0;
+      continue;
+    }
+    mumps.apply(*f, *direction);
+    direction->scale(-1.0);
+    double best_energy = energy;
+    const double best_step = descent_line_search(x, *direction, energy, f->dot(*direction), best_energy);
+    d.row(tables_, negative, residual, best_step, best_energy);
+    if (best_step == 0.0 && d.eta == 0.0) return std::nullopt;   // no measurable decrease: let Newton finish
+    if (best_step == 0.0) {   // no decrease along this direction: stiffen the shift
+      ++d.no_decrease;
+      d.eta = d.eta == 0.0 ? 1e-6 * d.scale : jump_.shift_growth * d.eta;
+      continue;
+    }
+    ++d.accepted;
+    d.unshifted_tried = false;
+    x.update(best_step, *direction, 1.0);
+    d.eta = best_step >= 1.0 ? 0.25 * d.eta : 2.0 * d.eta;
+    if (d.eta < 1e-9 * d.scale) d.eta = 0.0;
+  }
+  return std::nullopt;
+}
+
+std::variant<int, std::string> LoadPath::descend(Vector& x)
+{
+  Descent d;
+  auto start = model_.system().create_vector();
   start->assign(x);
-  std::ostringstream table;
-  table << std::scientific << std::setprecision(2);
-  if (tables_) table << "  descent  iteration  eta/scale  neg.piv   |f| [nN]       step  Pi [nN nm]\n";
-  auto row = [&](int negative, double residual, double step, double energy) {
-    if (!tables_) return;
-    table << "  descent  " << std::setw(9) << iteration << "  " << std::setw(9) << eta / scale << "  " << std::setw(7)
-          << negative << "  " << std::setw(9) << residual << "  " << std::setw(9) << step << "  "
-          << std::setprecision(8) << energy << std::setprecision(2) << "\n";
-  };
+  d.table << std::scientific << std::setprecision(2);
+  if (tables_) d.table << "  descent  iteration  eta/scale  neg.piv   |f| [nN]       step  Pi [nN nm]\n";
   // After Newton failed to confirm a state with a small gradient (just past a fold the gradient is small but no
   // equilibrium is near), the descent goes on and asks Newton again only at a gradient a thousand times smaller
   // (the minimum it then reaches can be very flat: a snapped-off face far out in the Lennard-Jones tail), up to
   // three times in all.
   double small_gradient = 1e-3;   // |f| [nN]
-  int confirmations = 0;
-  double residual_at_end = 0.0;
-  auto confirmed = system.create_vector();
-  for (;;) {
-    for (; iteration < jump_.maximum_iterations; ++iteration) {
-      system.set_damping(eta, Teuchos::rcpFromRef(x));   // anchored at x: a pure shift of the tangent, f unchanged
-      const auto evaluation = system.evaluate(x, f.get(), true);
-      system.set_damping(0.0, Teuchos::null);
-      if (!evaluation.admissible) return std::string("an element inverted during the energy descent");
-      if (scale == 0.0) scale = system.mean_diagonal();
-      const double energy = evaluation.internal_energy + evaluation.contact_energy;
-      const double residual = f->norm2();
-      int negative = 0;
-      try {
-        mumps.factor(*system.jacobian());
-        negative = mumps.statistics().negative_pivots;
-      } catch (const std::exception&) {
-        negative = 1;   // singular: treat like indefinite
-      }
-      if (negative > 0) {   // not a descent direction yet: shift more
-        row(negative, residual, 0.0, energy);
-        ++indefinite;
-        eta = eta == 0.0 ? 1e-6 * scale : jump_.shift_growth * eta;
-        continue;
-      }
-      // Near a stable minimum (positive definite tangent, small gradient): plain Newton finishes below. The energy
-      // alone cannot resolve the last digits (its changes fall below its rounding), the gradient can. A small gradient
-      // found with a shift is tested once without it: is the unshifted tangent positive definite there? (Without this
-      // a descent that has reached the minimum keeps raising the shift, since no step can lower Pi any more.)
-      residual_at_end = residual;
-      if (residual < small_gradient && (eta == 0.0 || !unshifted_tried)) {
-        row(negative, residual, 0.0, energy);
-        if (eta == 0.0) break;
-        unshifted_tried = true;
-        eta = 0.0;
-        continue;
-      }
-      mumps.apply(*f, *direction);
-      direction->scale(-1.0);
-      const double slope = f->dot(*direction);
-      bool admissible = true;
-      // Line search on Pi with expansion.
-      double step = 1.0, best_step = 0.0, best_energy = energy;
-      for (int trial_count = 0; trial_count < 30; ++trial_count) {
-        trial->update(1.0, x, step, *direction, 0.0);
-        const double value_at = energy_at(*trial, admissible);
-        const bool sufficient = admissible && value_at <= energy + 1e-4 * step * slope;
-        if (sufficient && value_at < best_energy) {
-          best_energy = value_at;
-          best_step = step;
-          if (step >= 1.0 && step < 64.0) {   // still descending: try further
-            step *= 2.0;
-            continue;
-          }
-          break;
-        }
-        if (best_step > 0.0) break;   // the expansion went too far: keep the best
-        step *= 0.5;
-      }
-      row(negative, residual, best_step, best_energy);
-      if (best_step == 0.0 && eta == 0.0) break;   // a plain Newton step and no measurable decrease: let Newton finish
-      if (best_step == 0.0) {   // no decrease along this direction: stiffen the shift
-        ++no_decrease;
-        eta = eta == 0.0 ? 1e-6 * scale : jump_.shift_growth * eta;
-        continue;
-      }
-      ++accepted;
-      unshifted_tried = false;
-      x.update(best_step, *direction, 1.0);
-      eta = best_step >= 1.0 ? 0.25 * eta : 2.0 * eta;
-      if (eta < 1e-9 * scale) eta = 0.0;
-    }
-    if (log_ && tables_) *log_ << table.str();
-    table.str("");
-    if (iteration >= jump_.maximum_iterations) {
+  auto confirmed = model_.system().create_vector();
+  for (int confirmations = 1;; ++confirmations) {
+    if (auto error = descend_to_small_gradient(x, d, small_gradient)) return *error;
+    if (log_ && tables_) *log_ << d.table.str();
+    d.table.str("");
+    if (d.iteration >= jump_.maximum_iterations) {
       start->update(1.0, x, -1.0);
       std::ostringstream reason;
-      reason << "no stable state within " << jump_.maximum_iterations << " iterations (" << accepted
+      reason << "no stable state within " << jump_.maximum_iterations << " iterations (" << d.accepted
              << " descent steps moved the state by at most " << std::setprecision(3) << start->normInf() << " nm; "
-             << indefinite << " shifts for an indefinite tangent, " << no_decrease << " for no decrease of Pi; final shift "
-             << eta / scale << " x the mean diagonal)";
+             << d.indefinite << " shifts for an indefinite tangent, " << d.no_decrease << " for no decrease of Pi; "
+             << "final shift " << d.eta / d.scale << " x the mean diagonal)";
       return reason.str();
     }
     confirmed->assign(x);
     const auto plain = newton_.solve(*confirmed, nullptr);
     if (plain.converged) {
       x.assign(*confirmed);
-      return iteration + (plain.iterations.empty() ? 0 : plain.iterations.back().iteration);
+      return d.iteration + (plain.iterations.empty() ? 0 : plain.iterations.back().iteration);
     }
-    if (++confirmations == 3)
+    if (confirmations == 3)
       return "Newton did not confirm the state the energy descent reached (" + plain.failure + ")";
-    small_gradient = 1e-3 * std::min(small_gradient, residual_at_end);
-    if (tables_) table << "  descent  (Newton did not confirm: " << plain.failure << "; descending further)\n";
+    small_gradient = 1e-3 * std::min(small_gradient, d.residual);
+    if (tables_) d.table << "  descent  (Newton did not confirm: " << plain.failure << "; descending further)\n";
   }
 }
 

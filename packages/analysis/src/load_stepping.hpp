@@ -24,7 +24,7 @@ struct StepParameters {
   double growth = 1.5;
   double cut = 0.5;
 
-  static void declare(Teuchos::ParameterList& list, double initial, double minimum, double maximum);
+  static void declare(Teuchos::ParameterList& list, const StepParameters& defaults);
   static StepParameters from(const Teuchos::ParameterList& list, const std::string& path);
 };
 
@@ -179,7 +179,25 @@ public:
 
 private:
   LoadPoint measure(const Vector& x, int iterations, int negative_pivots) const;
+  // The steps of `advance`: the predictor, the energy a converged step released, passing a fold (the controlled
+  // load's value beyond it, or why the path stops there), and taking a converged step.
+  static const char* load_name(Master controlled);
+  void predict(Vector& trial, Master controlled, double load, double increment) const;
+  double released_energy(const LoadPoint& point) const;
+  std::variant<double, Failure> pass_fold(Master controlled, double unreached,
+                                          const discretization::MasterControl& control, double direction,
+                                          double smallest_increment, double unit, const std::string& newton_failure,
+                                          const Callback& on_point);
+  void take_step(const Vector& state, const LoadPoint& point, double increment, const std::string& table,
+                 const Callback& on_point);
+  // The energy descent of a jump (LoadPath's comment above): iterations down to a small gradient, each with a line
+  // search on Pi, then plain Newton to confirm; the iterations it took, or why it found no stable state.
+  struct Descent;
   std::variant<int, std::string> descend(Vector& x);
+  std::optional<std::string> descend_to_small_gradient(Vector& x, Descent& descent, double small_gradient);
+  double descent_line_search(const Vector& x, const Vector& direction, double energy, double slope,
+                             double& best_energy) const;
+  solvers::MumpsSolver& descent_solver();
 
   solvers::SpatulaModel& model_;
   const solvers::NewtonSolver& newton_;

@@ -26,7 +26,7 @@ struct AdhesionSettings {
   laws::LennardJones lennard_jones;    // A_H [nN nm], r0, r_reg, r_cut [nm]
   laws::RoughSubstrate rough;          // z0, h, lambda (base set from r_eq: asperity tops at -r_eq)
   double substrate_height = 0.0;       // flat: the plane z = -r_eq, so the undeformed pad is traction-free
-  bool conform = false;                // rough: start from the pad pressed onto the asperities
+  bool conform = true;                 // rough: start from the pad pressed onto the asperities
   bool skip_distant_faces = true;      // integrate only faces with a point within the cut-off
   bool anchor_at_restart = false;      // stiction: travel measured from the restart state (else the undeformed one)
 
@@ -34,6 +34,8 @@ struct AdhesionSettings {
   double gamma_L() const { return 1.0 / lennard_jones.r0; }
 };
 
+// The scene's adhesion: off by default (law "none"); the settings' defaults are those of every key declared (a law's
+// regularization ratio 0.8 and cut-off 10 nm are scene choices, declared in the list only).
 struct AdhesionParameters {
   bool enabled = false;
   AdhesionSettings settings;

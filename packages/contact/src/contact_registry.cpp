@@ -14,18 +14,16 @@ const std::vector<std::string>& substrate_names()
 
 namespace {
 
-std::string describe(const AdhesionSettings& s)
+// The model's description; `law_details` is what the law's own factory adds.
+std::string describe(const AdhesionSettings& s, const std::string& law_details = "")
 {
   return s.law + " Lennard-Jones adhesion on a " + substrate_names()[static_cast<int>(s.substrate)] + " substrate (A_H = " +
          std::to_string(s.lennard_jones.hamaker * 10.0) + "e-19 J, r0 = " + std::to_string(s.lennard_jones.r0) +
          " nm, r_reg = " + std::to_string(s.lennard_jones.r_reg) + " nm, r_cut = " +
          std::to_string(s.lennard_jones.r_cut) + " nm), " +
-         (s.enrichment == discretization::Enrichment::q1c2 ? "Q1C2" : "Q1C1") + ", " + std::to_string(s.quadrature) +
+         parameters::name_of(s.enrichment, discretization::enrichment_names()) + ", " + std::to_string(s.quadrature) +
          "x" + std::to_string(s.quadrature) + " points per face" +
-         (s.skip_distant_faces ? "" : ", every face integrated") +
-         (s.law == "stiction" ? (s.anchor_at_restart ? ", travel measured from the restart state"
-                                                     : ", travel measured from the undeformed state")
-                              : "");
+         (s.skip_distant_faces ? "" : ", every face integrated") + law_details;
 }
 
 std::shared_ptr<const discretization::ContactModel> frictionless(const AdhesionSettings& s)
@@ -48,7 +46,9 @@ std::shared_ptr<const discretization::ContactModel> stiction(const AdhesionSetti
                                  substrate_names()[static_cast<int>(s.substrate)] +
                                  "'): tangential travel on a curved substrate is not defined");
   elements::StictionIntegrand integrand{{s.lennard_jones, s.substrate_height}};
-  return std::make_shared<IntegrandContactModel<decltype(integrand)>>(integrand, s.quadrature, describe(s),
+  const std::string anchors = s.anchor_at_restart ? ", travel measured from the restart state"
+                                                  : ", travel measured from the undeformed state";
+  return std::make_shared<IntegrandContactModel<decltype(integrand)>>(integrand, s.quadrature, describe(s, anchors),
                                                                       s.lennard_jones.work_of_adhesion(),
                                                                       s.skip_distant_faces);
 }

@@ -6,6 +6,7 @@
 #include "contact_registry.hpp"
 #include "load_stepping.hpp"
 #include "parameter_validation.hpp"
+#include "same_fields.hpp"
 #include "spatula_mesher.hpp"
 
 #include <Teuchos_DefaultComm.hpp>
@@ -277,4 +278,29 @@ TEST(ContactRegistry, StictionOnARoughSubstrateIsAClearError)
   } catch (const parameters::InputError& error) {
     EXPECT_NE(std::string(error.what()).find("needs 'Adhesion/substrate' = 'flat'"), std::string::npos);
   }
+}
+
+// One source for every default: the Adhesion list declares the typed settings' own defaults (adhesion off; when on,
+// the law's constants, substrate, enrichment and quadrature as a default AdhesionSettings), and its normalized
+// constants are the physical ones at the default Young's modulus.
+TEST(Adhesion, AnEmptyListReadsBackAsTheTypedDefaults)
+{
+  Teuchos::ParameterList list;
+  contact::AdhesionParameters::declare(list);
+  const double young = discretization::SolidParameters{}.young;
+  const auto read = contact::AdhesionParameters::from(list, young);
+  const contact::AdhesionParameters d;
+  EXPECT_EQ(read.enabled, d.enabled);
+  using Settings = contact::AdhesionSettings;
+  const auto& t = d.settings;
+  expect_same_fields(read.settings, t, &Settings::substrate, &Settings::enrichment, &Settings::quadrature,
+                     &Settings::skip_distant_faces, &Settings::anchor_at_restart, &Settings::conform);
+  using Law = laws::LennardJones;
+  expect_same_fields(read.settings.lennard_jones, t.lennard_jones, &Law::hamaker, &Law::r0);
+  using Rough = laws::RoughSubstrate;
+  expect_same_fields(read.settings.rough, t.rough, &Rough::z0, &Rough::width, &Rough::spacing);
+  list.set("specification", std::string("normalized"));
+  const auto normalized = contact::AdhesionParameters::from(list, young).settings.lennard_jones;
+  EXPECT_NEAR(normalized.hamaker, t.lennard_jones.hamaker, 1e-4 * t.lennard_jones.hamaker);   // gamma_W to 5 digits
+  EXPECT_DOUBLE_EQ(normalized.r0, t.lennard_jones.r0);
 }

@@ -1,8 +1,7 @@
 #include "discrete_system.hpp"
 
-#include "element_scatter.hpp"
 #include "parameter_validation.hpp"
-#include "solid_element.hpp"
+#include "solid_kernel.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
 #include <Tpetra_Assembly_Helpers.hpp>
@@ -15,10 +14,12 @@ namespace spatula::discretization {
 
 void SolidParameters::declare(Teuchos::ParameterList& material)
 {
+  const SolidParameters d;   // the defaults
   using parameters::Range;
-  parameters::declare_double(material, "E", 2.0, "Young's modulus [GPa]", Range::positive());
-  parameters::declare_double(material, "nu", 0.2, "Poisson's ratio", {-1.0, 0.5, true, true});
-  parameters::declare_int(material, "quadrature order", 2, "Gauss points per direction in each hexahedron",
+  parameters::declare_double(material, "E", d.young, "Young's modulus [GPa]", Range::positive());
+  parameters::declare_double(material, "nu", d.poisson, "Poisson's ratio", {-1.0, 0.5, true, true});
+  parameters::declare_int(material, "quadrature order", d.quadrature_order,
+                          "Gauss points per direction in each hexahedron",
                           Range::closed(1, 4));
 }
 
@@ -32,42 +33,6 @@ SolidParameters SolidParameters::from(const Teuchos::ParameterList& material)
 }
 
 namespace {
-
-template <class T>
-using DeviceView = Kokkos::View<T, device_type>;
-
-// Bulk solid: one element per work item (Hex8 or Hex13); reduces the energy, reports an inverted element.
-template <class Shape>
-struct SolidKernel {
-  ElementScatter scatter;
-  DeviceView<const int**> element_nodes;
-  DeviceView<const std::int64_t*> element_ids;
-  DeviceView<const double* [3]> coordinates;
-  DeviceView<std::int64_t[1]> inverted;   // global id + 1 of an inverted element, 0 if none
-  laws::NeoHookean law;
-  int order = 2;
-
-  KOKKOS_INLINE_FUNCTION void operator()(const int element, double& energy) const
-  {
-    constexpr int n = Shape::nodes;
-    int nodes[n];
-    double X[n][3], u[n][3];
-    for (int a = 0; a < n; ++a) {
-      nodes[a] = element_nodes(element, a);
-      for (int i = 0; i < 3; ++i) X[a][i] = coordinates(nodes[a], i);
-      scatter.displacement(nodes[a], u[a]);
-    }
-    double element_energy, r[3 * n], K[3 * n][3 * n];
-    const auto status =
-        elements::solid_element<Shape>(law, X, u, order, element_energy, r, scatter.with_matrix ? K : nullptr);
-    if (status != elements::ElementStatus::ok) {
-      Kokkos::atomic_fetch_max(&inverted(0), element_ids(element) + 1);
-      return;
-    }
-    energy += element_energy;
-    scatter.add<n>(nodes, r, K);
-  }
-};
 
 // Undeformed area of a contact face (its corners span the bilinear reference face).
 double face_area(const NodeSpace& space, const std::array<std::int64_t, 9>& face)
@@ -393,9 +358,10 @@ struct DiscreteSystem::Implementation {
     return energy;
   }
 
+  // Residual (and tangent) of the state x: the bulk and contact blocks scattered into the global system, the
+  // constraints' rows, the totals over the ranks, then the reactions.
   Evaluation evaluate(const Vector& x, Vector* out_residual, bool with_jacobian)
   {
-    Evaluation result;
     state->doImport(x, *importer, Tpetra::INSERT);
     const auto masters = master_values(x);
     Tpetra::beginAssembly(*residual);
@@ -410,60 +376,83 @@ struct DiscreteSystem::Implementation {
     ContactTotals contact;
     {
       const auto scatter = make_scatter(masters, with_jacobian);
-      {
-        Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer(
-            with_jacobian ? "spatula: assembly bulk (residual + tangent)" : "spatula: assembly bulk (residual)"));
-        energy += solid_block<elements::Hex8Shape>("spatula: solid hex8 assembly", scatter, hex8_nodes, hex8_ids,
-                                                   inverted);
-        energy += solid_block<elements::Hex13Shape>("spatula: solid hex13 assembly", scatter, hex13_nodes, hex13_ids,
-                                                    inverted);
-        Kokkos::fence();
-      }
-      if (options.contact) {
-        Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer(
-            with_jacobian ? "spatula: assembly contact (residual + tangent)" : "spatula: assembly contact (residual)"));
-        contact = options.contact->assemble(contact_faces, scatter);
-        Kokkos::fence();
-      }
-      // Proximal damping on the diagonal of every owned row that is not a prescribed master.
-      if (with_jacobian && damping > 0.0) {
-        auto local = matrix->getLocalMatrixDevice();
-        const auto columns = column_of;
-        const double eta = damping;
-        int skip[master_count];
-        for (int m = 0; m < master_count; ++m)
-          skip[m] = control.prescribed[m] ? owned->getLocalElement(layout.masters[m]) : -1;
-        const int rows = static_cast<int>(owned->getNodeNumElements());
-        Kokkos::parallel_for("spatula: proximal damping", Kokkos::RangePolicy<execution_space>(0, rows),
-                             KOKKOS_LAMBDA(int row) {
-                               for (int m = 0; m < master_count; ++m)
-                                 if (row == skip[m]) return;
-                               const int column = columns(row);
-                               local.sumIntoValues(row, &column, 1, &eta, false, true);
-                             });
-      }
-      // Identity rows of prescribed masters (their owner adds the diagonal once).
-      if (with_jacobian) {
-        auto local = matrix->getLocalMatrixDevice();
-        const auto columns = column_of;
-        for (int m = 0; m < master_count; ++m) {
-          const int unknown = owned->getLocalElement(layout.masters[m]);
-          if (!control.prescribed[m] || unknown < 0) continue;
-          Kokkos::parallel_for("spatula: prescribed master diagonal", Kokkos::RangePolicy<execution_space>(0, 1),
-                               KOKKOS_LAMBDA(int) {
-                                 const int column = columns(unknown);
-                                 const double one = 1.0;
-                                 local.sumIntoValues(unknown, &column, 1, &one, false, true);
-                               });
-        }
-        Kokkos::fence();
-      }
+      energy = assemble_bulk(scatter, with_jacobian, inverted);
+      if (options.contact) contact = assemble_contact(scatter, with_jacobian);
+      if (with_jacobian && damping > 0.0) add_damping_diagonal();
+      if (with_jacobian) add_prescribed_diagonals();
     }
     {
       Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: assembly communication"));
       Tpetra::endAssembly(*residual);
       if (with_jacobian) Tpetra::endAssembly(*matrix, *coupling);
     }
+    auto result = totals_over_ranks(energy, contact, inverted);
+    reactions_and_constraint_rows(x, result);
+    if (out_residual) out_residual->assign(*residual);
+    return result;
+  }
+
+  double assemble_bulk(const ElementScatter& scatter, bool with_jacobian, const DeviceView<std::int64_t[1]>& inverted)
+  {
+    Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer(
+        with_jacobian ? "spatula: assembly bulk (residual + tangent)" : "spatula: assembly bulk (residual)"));
+    double energy = 0.0;
+    energy += solid_block<elements::Hex8Shape>("spatula: solid hex8 assembly", scatter, hex8_nodes, hex8_ids, inverted);
+    energy +=
+        solid_block<elements::Hex13Shape>("spatula: solid hex13 assembly", scatter, hex13_nodes, hex13_ids, inverted);
+    Kokkos::fence();
+    return energy;
+  }
+
+  ContactTotals assemble_contact(const ElementScatter& scatter, bool with_jacobian)
+  {
+    Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer(
+        with_jacobian ? "spatula: assembly contact (residual + tangent)" : "spatula: assembly contact (residual)"));
+    const auto contact = options.contact->assemble(contact_faces, scatter);
+    Kokkos::fence();
+    return contact;
+  }
+
+  // Proximal damping on the diagonal of every owned row that is not a prescribed master.
+  void add_damping_diagonal()
+  {
+    auto local = matrix->getLocalMatrixDevice();
+    const auto columns = column_of;
+    const double eta = damping;
+    int skip[master_count];
+    for (int m = 0; m < master_count; ++m) skip[m] = control.prescribed[m] ? owned->getLocalElement(layout.masters[m]) : -1;
+    const int rows = static_cast<int>(owned->getNodeNumElements());
+    Kokkos::parallel_for("spatula: proximal damping", Kokkos::RangePolicy<execution_space>(0, rows),
+                         KOKKOS_LAMBDA(int row) {
+                           for (int m = 0; m < master_count; ++m)
+                             if (row == skip[m]) return;
+                           const int column = columns(row);
+                           local.sumIntoValues(row, &column, 1, &eta, false, true);
+                         });
+  }
+
+  // Identity rows of prescribed masters (their owner adds the diagonal once).
+  void add_prescribed_diagonals()
+  {
+    auto local = matrix->getLocalMatrixDevice();
+    const auto columns = column_of;
+    for (int m = 0; m < master_count; ++m) {
+      const int unknown = owned->getLocalElement(layout.masters[m]);
+      if (!control.prescribed[m] || unknown < 0) continue;
+      Kokkos::parallel_for("spatula: prescribed master diagonal", Kokkos::RangePolicy<execution_space>(0, 1),
+                           KOKKOS_LAMBDA(int) {
+                             const int column = columns(unknown);
+                             const double one = 1.0;
+                             local.sumIntoValues(unknown, &column, 1, &one, false, true);
+                           });
+    }
+    Kokkos::fence();
+  }
+
+  // Energies, contact face counts and the inverted-element flag summed over the ranks.
+  Evaluation totals_over_ranks(double energy, const ContactTotals& contact, const DeviceView<std::int64_t[1]>& inverted)
+  {
+    Evaluation result;
     auto h_inverted = Kokkos::create_mirror_view(inverted);
     Kokkos::deep_copy(h_inverted, inverted);
     std::int64_t bad = h_inverted(0);
@@ -478,8 +467,13 @@ struct DiscreteSystem::Implementation {
     result.skipped_contact_faces = count_totals[1];
     result.admissible = bad == 0;
     result.inverted_element = bad - 1;
+    return result;
+  }
 
-    // Reactions: the master rows' internal forces, then prescribed rows become identity rows (residual 0).
+  // Reactions: the master rows' internal forces, then prescribed rows become identity rows (residual 0); the
+  // proximal damping's force eta (x - anchor) on every other row.
+  void reactions_and_constraint_rows(const Vector& x, Evaluation& result)
+  {
     auto values = residual->getDataNonConst(0);
     for (int m = 0; m < master_count; ++m) {
       const int unknown = owned->getLocalElement(layout.masters[m]);
@@ -497,9 +491,6 @@ struct DiscreteSystem::Implementation {
         if (unknown >= 0 && control.prescribed[m]) values[unknown] = 0.0;
       }
     }
-    values = Teuchos::null;
-    if (out_residual) out_residual->assign(*residual);
-    return result;
   }
 };
 

@@ -15,7 +15,7 @@
 namespace spatula::discretization {
 
 enum class Enrichment { q1c1, q1c2 };
-Enrichment enrichment_from_name(const std::string& name);   // "Q1C1" or "Q1C2"
+const std::vector<std::string>& enrichment_names();   // "Q1C1", "Q1C2": in the order of Enrichment
 
 struct NodeSpace {
   std::int64_t mesh_nodes = 0;                           // ids below this are mesh nodes

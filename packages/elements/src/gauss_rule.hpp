@@ -38,4 +38,14 @@ KOKKOS_INLINE_FUNCTION void gauss_point(int points, int index, double& position,
   weight = w[points - 1][index];
 }
 
+// Point (i0, i1, i2) of the points^3 tensor-product rule on [-1, 1]^3 and its weight w0 w1 w2.
+KOKKOS_INLINE_FUNCTION void gauss_point_3d(int points, int i0, int i1, int i2, double xi[3], double& weight)
+{
+  double w0, w1, w2;
+  gauss_point(points, i0, xi[0], w0);
+  gauss_point(points, i1, xi[1], w1);
+  gauss_point(points, i2, xi[2], w2);
+  weight = w0 * w1 * w2;
+}
+
 }  // namespace spatula::elements

@@ -101,14 +101,12 @@ KOKKOS_INLINE_FUNCTION ElementStatus solid_element(const Law& law, const double 
   for (int i0 = 0; i0 < order; ++i0)
     for (int i1 = 0; i1 < order; ++i1)
       for (int i2 = 0; i2 < order; ++i2) {
-        double xi[3], w0, w1, w2;
-        gauss_point(order, i0, xi[0], w0);
-        gauss_point(order, i1, xi[1], w1);
-        gauss_point(order, i2, xi[2], w2);
+        double xi[3], rule_weight;
+        gauss_point_3d(order, i0, i1, i2, xi, rule_weight);
         double G[n][3];
         const double det = reference_gradients<Shape>(X, xi, G);
         if (!(det > 0.0)) return ElementStatus::invalid_reference;
-        const double weight = w0 * w1 * w2 * det;
+        const double weight = rule_weight * det;
         double F[3][3], W, P[3][3], A[9][9];
         deformation_gradient<n>(u, G, F);
         if (!law.evaluate(F, W, P, K ? A : nullptr)) return ElementStatus::inverted;
@@ -149,12 +147,10 @@ KOKKOS_INLINE_FUNCTION double mean_cauchy_trace(const Law& law, const double X[S
   for (int i0 = 0; i0 < order; ++i0)
     for (int i1 = 0; i1 < order; ++i1)
       for (int i2 = 0; i2 < order; ++i2) {
-        double xi[3], w0, w1, w2;
-        gauss_point(order, i0, xi[0], w0);
-        gauss_point(order, i1, xi[1], w1);
-        gauss_point(order, i2, xi[2], w2);
+        double xi[3], rule_weight;
+        gauss_point_3d(order, i0, i1, i2, xi, rule_weight);
         double G[n][3], F[3][3], sigma[3][3];
-        const double weight = w0 * w1 * w2 * reference_gradients<Shape>(X, xi, G);
+        const double weight = rule_weight * reference_gradients<Shape>(X, xi, G);
         deformation_gradient<n>(u, G, F);
         if (!law.cauchy(F, sigma)) continue;
         sum += (sigma[0][0] + sigma[1][1] + sigma[2][2]) * weight;

@@ -36,13 +36,15 @@ int MeshParameters::layer_count() const { return layers > 0 ? layers : find_leve
 
 void MeshParameters::declare(Teuchos::ParameterList& mesh)
 {
+  const MeshParameters d;   // the defaults
   std::vector<std::string> names;
   for (const auto& level : mesh_levels()) names.push_back(level.name);
-  parameters::declare_string(mesh, "level", "coarse",
+  parameters::declare_string(mesh, "level", d.level,
                              "mesh density as in the paper's Table 3 (in-plane factor 1, 4, 8)", names);
-  parameters::declare_int(mesh, "refinement factor", 1, "extra in-plane subdivision of every pad element",
+  parameters::declare_int(mesh, "refinement factor", d.refinement_factor,
+                          "extra in-plane subdivision of every pad element",
                           parameters::Range::closed(1, 16));
-  parameters::declare_int(mesh, "layers", 0, "elements through the pad thickness (0: the level's 4, 4, 10)",
+  parameters::declare_int(mesh, "layers", d.layers, "elements through the pad thickness (0: the level's 4, 4, 10)",
                           parameters::Range::closed(0, 32));
 }
 

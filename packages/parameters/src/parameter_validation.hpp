@@ -10,6 +10,7 @@
 #include <algorithm>
 
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -47,6 +48,23 @@ void declare_int(ParameterList& list, const std::string& name, int default_value
 void declare_bool(ParameterList& list, const std::string& name, bool default_value, const std::string& doc);
 void declare_string(ParameterList& list, const std::string& name, const std::string& default_value,
                     const std::string& doc, const std::vector<std::string>& allowed = {});
+// The enum choice a name stands for (enumerators in the order of `names`), or nothing if it is not one of them: for
+// names read outside a parameter list (command-line options of the benchmarks).
+template <class Choice>
+std::optional<Choice> choice_named(const std::string& name, const std::vector<std::string>& names)
+{
+  const auto found = std::find(names.begin(), names.end(), name);
+  if (found == names.end()) return std::nullopt;
+  return static_cast<Choice>(found - names.begin());
+}
+
+// The name of an enum choice (its enumerators in the order of `names`): how a typed default is declared.
+template <class Choice>
+const std::string& name_of(Choice value, const std::vector<std::string>& names)
+{
+  return names.at(static_cast<std::size_t>(value));
+}
+
 // A validated string choice as the enum whose enumerators are in the order of `names` (the list it was declared
 // with): choices become types once, where they are read, and nothing downstream compares strings.
 template <class Choice>

@@ -48,23 +48,24 @@ bool RefactorCost::keep(double last_tangent_solve_seconds)
 
 void LinearSolverParameters::declare(Teuchos::ParameterList& list)
 {
+  const LinearSolverParameters d;   // the defaults
   using parameters::Range;
-  parameters::declare_string(list, "type", "mumps", "linear solver of the Newton steps", linear_solver_names());
-  parameters::declare_double(list, "tolerance", 1e-10, "relative residual of each linear solve",
+  parameters::declare_string(list, "type", parameters::name_of(d.type, linear_solver_names()),
+                             "linear solver of the Newton steps", linear_solver_names());
+  parameters::declare_double(list, "tolerance", d.tolerance, "relative residual of each linear solve",
                              {0.0, 0.1, true, false});
-  parameters::declare_int(list, "maximum iterations", 500, "Krylov iterations per solve (gmres-ilu)",
+  parameters::declare_int(list, "maximum iterations", d.maximum_iterations, "Krylov iterations per solve (gmres-ilu)",
                           Range::closed(1, 100000));
-  parameters::declare_int(list, "ILU fill level", 1, "level of fill of ILU(k) (gmres-ilu)", Range::closed(0, 8));
+  parameters::declare_int(list, "ILU fill level", d.fill_level,
+                          "level of fill of ILU(k) (gmres-ilu)", Range::closed(0, 8));
   MumpsParameters::declare(parameters::declare_sublist(list, "MUMPS", "direct solver options"));
-  // With refactor = lag. Default 4: measured 12 % less CPU than 0 on the coarse pull-off at 60 deg with P_max within
-  // 0.04 % (docs/error-vs-time.md).
-  parameters::declare_int(list, "lag", 4,
+  parameters::declare_int(list, "lag", d.lag,
                           "mumps: Newton tangents one factorization may serve as preconditioner (0: refactor always)",
                           Range::closed(0, 1000));
-  parameters::declare_int(list, "lag applications", 8,
+  parameters::declare_int(list, "lag applications", d.lag_applications,
                           "mumps: refactor once the solves of one tangent needed more preconditioner applications",
                           Range::closed(1, 1000));
-  parameters::declare_string(list, "refactor", "cost",
+  parameters::declare_string(list, "refactor", parameters::name_of(d.refactor, refactor_rule_names()),
                              "mumps: when a kept factorization is replaced: lag (after 'lag' tangents or once a "
                              "tangent needed more than 'lag applications' solves) or cost (once the last tangent's "
                              "solves took longer than the average time per tangent of the factorization's cycle, "

@@ -46,27 +46,28 @@ std::string ordering_name(int code)
 
 void MumpsParameters::declare(Teuchos::ParameterList& list)
 {
-  parameters::declare_bool(list, "symmetric", true,
+  const MumpsParameters d;   // the defaults
+  parameters::declare_bool(list, "symmetric", d.symmetric,
                            "LDL^T factorization (symmetric indefinite); false: LU");
-  parameters::declare_int(list, "memory relaxation", 40, "MUMPS ICNTL(14): extra workspace [%]",
+  parameters::declare_int(list, "memory relaxation", d.memory_relaxation, "MUMPS ICNTL(14): extra workspace [%]",
                           parameters::Range::closed(0, 1000));
-  parameters::declare_bool(list, "verbose", false, "print MUMPS' statistics of every analysis and factorization");
-  parameters::declare_bool(list, "keep workspace", true,
+  parameters::declare_bool(list, "verbose", d.verbose, "print MUMPS' statistics of every analysis and factorization");
+  parameters::declare_bool(list, "keep workspace", d.keep_workspace,
                            "keep memory MUMPS frees in the process for its next factorization (glibc: large blocks "
                            "not mapped, free memory not trimmed); false: glibc's defaults, which map and unmap the "
                            "factor workspace at every factorization");
-  parameters::declare_string(list, "ordering", "automatic",
+  parameters::declare_string(list, "ordering", parameters::name_of(d.ordering, mumps_ordering_names()),
                              "fill-reducing ordering (ICNTL(7)); SCOTCH and METIS need a MUMPS built with them, "
                              "otherwise the analysis refuses the run; automatic: MUMPS' choice",
                              mumps_ordering_names());
   // Measured on the fine mesh (318,087 unknowns, 2 ranks, benchmarks/solid_benchmark): 1e-5 makes a Newton iteration
   // 0.80 x as long and the factors 0.75 x as large; on the medium mesh a factorization is too small to gain.
-  parameters::declare_double(list, "low rank tolerance", 1e-5,
+  parameters::declare_double(list, "low rank tolerance", d.low_rank_tolerance,
                              "block low-rank factorization with this dropping threshold (ICNTL(35) = 2, CNTL(7)) for "
                              "systems of at least 'low rank from' unknowns; the factors are then approximate and serve "
                              "as a GMRES preconditioner (the Newton directions stay exact); 0: full rank always",
                              parameters::Range::closed(0.0, 0.1));
-  parameters::declare_int(list, "low rank from", 100000,
+  parameters::declare_int(list, "low rank from", d.low_rank_from,
                           "unknowns from which the low-rank factorization is used (smaller systems: full rank)",
                           parameters::Range::closed(0, std::numeric_limits<int>::max()));
 }

@@ -35,40 +35,46 @@ const std::vector<std::string>& line_search_names()
 
 void NewtonParameters::declare(Teuchos::ParameterList& list)
 {
+  const NewtonParameters d;   // the defaults
   using parameters::Range;
-  parameters::declare_double(list, "relative tolerance", 1e-9, "|f| relative to its value at the step start",
+  parameters::declare_double(list, "relative tolerance", d.relative_tolerance,
+                             "|f| relative to its value at the step start",
                              {0.0, 1.0, false, true});
-  parameters::declare_double(list, "absolute tolerance", 1e-9, "|f|_2 [nN] (over sqrt(n) with norms = scaled)",
+  parameters::declare_double(list, "absolute tolerance", d.absolute_tolerance,
+                             "|f|_2 [nN] (over sqrt(n) with norms = scaled)",
                              Range::non_negative());
-  parameters::declare_double(list, "update tolerance", 1e-6, "|dx|_inf [nm, rad] (over n with norms = scaled)",
+  parameters::declare_double(list, "update tolerance", d.update_tolerance,
+                             "|dx|_inf [nm, rad] (over n with norms = scaled)",
                              Range::positive());
-  parameters::declare_int(list, "maximum iterations", 12, "Newton iterations per load step (fail fast, cut the step)",
+  parameters::declare_int(list, "maximum iterations", d.maximum_iterations,
+                          "Newton iterations per load step (fail fast, cut the step)",
                           Range::closed(1, 500));
-  parameters::declare_string(list, "line search", "backtrack", "step length control", line_search_names());
+  parameters::declare_string(list, "line search", parameters::name_of(d.line_search, line_search_names()),
+                             "step length control", line_search_names());
   // 2 x 0.5, applied only after a failed step ('give up'): on the coarse pull-off at 45 deg 1,827 -> 1,226 tangents,
   // CPU 0.65, results within 0.005 % (benchmarks/step_control.py). Applied in every attempt it saved as much there
   // but cost 1.4 x the CPU on the smooth medium scene xml/pull-off-medium.xml, which has no failed step.
-  parameters::declare_int(list, "non-contracting iterations", 2,
+  parameters::declare_int(list, "non-contracting iterations", d.non_contracting_iterations,
                           "give up on a load step after this many consecutive iterations that did not shrink |f| "
                           "below 'contraction' times its value before while |f| was above 1e-3 of its first value (0: "
                           "only 'maximum iterations' ends a step)",
                           Range::closed(0, 500));
-  parameters::declare_string(list, "give up", "after a failed step",
+  parameters::declare_string(list, "give up", d.give_up_only_after_failure ? "after a failed step" : "always",
                              "where the 'non-contracting iterations' rule applies: after a failed step (only in the "
                              "attempts that retry a load after a step failed, i.e. near a fold; a first attempt at "
                              "a large increment on a smooth path keeps every iteration) or always",
                              {"after a failed step", "always"});
-  parameters::declare_double(list, "contraction", 0.5,
+  parameters::declare_double(list, "contraction", d.contraction,
                              "|f_k| / |f_k-1| at or above which an iteration counts as non-contracting",
                              {0.0, 10.0, true, false});
   // Default Eisenstat-Walker: on the coarse pull-offs at 60 / 45 deg 36 / 33 % fewer MUMPS solves, 38 / 31 % fewer
   // factorizations, CPU 0.85 / 0.96 of constant, results within 0.004 % (benchmarks/step_control.py).
-  parameters::declare_string(list, "forcing term", "Eisenstat-Walker",
+  parameters::declare_string(list, "forcing term", d.inexact ? "Eisenstat-Walker" : "constant",
                              "how accurately each linear system is solved: constant (to 'Linear Solver/tolerance' "
                              "always) or Eisenstat-Walker (NOX's type 2: relative tolerance 0.9 (|f_k| / |f_k-1|)^1.5 "
                              "between 'Linear Solver/tolerance' and 0.01; matters where GMRES runs on a lagged "
                              "factorization)", {"constant", "Eisenstat-Walker"});
-  parameters::declare_string(list, "norms", "scaled",
+  parameters::declare_string(list, "norms", d.scaled_norms ? "scaled" : "unscaled",
                              "how the absolute and update tolerances are applied: scaled (NOX's default, as every "
                              "recorded result ran) |f|_2 / sqrt(n) and |dx|_inf / n with n unknowns; unscaled: |f|_2 "
                              "and |dx|_inf themselves", {"scaled", "unscaled"});

@@ -2,6 +2,7 @@
 // solver and forcing term reaches the same equilibrium, whose reactions balance (zero net lift force, a positive
 // restoring moment), and a fresh factorization per iteration converges quadratically.
 #include "newton.hpp"
+#include "same_fields.hpp"
 #include "spatula_mesher.hpp"
 
 #include <Teuchos_DefaultComm.hpp>
@@ -79,4 +80,26 @@ TEST(Newton, EveryLinearSolverAndForcingTermReachesTheSameEquilibrium)
   const auto iterative = rotate(ilu, solvers::NewtonParameters{});
   ASSERT_TRUE(iterative.result.converged) << iterative.result.failure;
   EXPECT_LT(relative_difference(*reference.x, *iterative.x), 1e-8);
+}
+
+// One source for every default: the valid parameter list declares the typed structs' own defaults, so a list with
+// nothing set reads back as a default-constructed struct, field by field.
+TEST(Parameters, AnEmptyListReadsBackAsTheTypedDefaults)
+{
+  Teuchos::ParameterList newton_list, linear_list;
+  solvers::NewtonParameters::declare(newton_list);
+  solvers::LinearSolverParameters::declare(linear_list);
+  using Newton = solvers::NewtonParameters;
+  expect_same_fields(Newton::from(newton_list), Newton{}, &Newton::relative_tolerance, &Newton::absolute_tolerance,
+                     &Newton::update_tolerance, &Newton::maximum_iterations, &Newton::line_search, &Newton::scaled_norms,
+                     &Newton::inexact, &Newton::non_contracting_iterations, &Newton::give_up_only_after_failure,
+                     &Newton::contraction);
+  using Linear = solvers::LinearSolverParameters;
+  const auto linear = Linear::from(linear_list);
+  expect_same_fields(linear, Linear{}, &Linear::type, &Linear::tolerance, &Linear::maximum_iterations,
+                     &Linear::fill_level, &Linear::lag, &Linear::lag_applications, &Linear::refactor);
+  using Mumps = solvers::MumpsParameters;
+  expect_same_fields(linear.mumps, Mumps{}, &Mumps::symmetric, &Mumps::memory_relaxation, &Mumps::verbose,
+                     &Mumps::keep_workspace, &Mumps::ordering, &Mumps::low_rank_tolerance, &Mumps::low_rank_from);
+  EXPECT_EQ(linear_list.get<int>("lag"), 4);   // the documented default of the lag rule
 }
