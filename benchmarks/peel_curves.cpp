@@ -3,7 +3,7 @@
 //   peel_curves <angle deg> <pull nm> <window start nm> <elements along> <output.csv>
 //
 // Writes pull, F/b for both enrichments and prints the steady F/b against the energy balance.
-#include "strip_peel.hpp"
+#include "peel/strip_peel.hpp"
 
 #include <Teuchos_DefaultComm.hpp>
 #include <Teuchos_GlobalMPISession.hpp>

@@ -9,9 +9,9 @@
 // Prints one CSV line: medians over `repetitions` of the residual-only and residual+tangent assembly, the
 // resulting element throughput, the effective memory traffic of the tangent fill against a STREAM-like triad
 // measured in the same run, and the time of one Newton iteration split into assembly and linear solve.
-#include "load_stepping.hpp"
-#include "parameter_validation.hpp"
-#include "spatula_mesher.hpp"
+#include "analysis/load_stepping.hpp"
+#include "parameters/parameter_validation.hpp"
+#include "mesh/spatula_mesher.hpp"
 
 #include <Teuchos_DefaultComm.hpp>
 #include <Teuchos_GlobalMPISession.hpp>

@@ -1,6 +1,6 @@
 # spatula_package(<name> SOURCES ... DEPENDS ...)
 #   One library per package: target spatula_<name>, alias Spatula::<name>, headers in packages/<name>/src,
-#   installed under include/spatula. DEPENDS lists the package's dependencies explicitly (PUBLIC). Without
+#   included as "<name>/header.hpp" and installed under include/spatula/<name>. DEPENDS lists the package's dependencies explicitly (PUBLIC). Without
 #   SOURCES the package is header-only (an INTERFACE library).
 # spatula_test(<name> SOURCES ... DEPENDS ... [RANKS n ...])
 #   A GoogleTest executable run by CTest once per rank count (default 1); MPI runs use mpiexec.
@@ -22,12 +22,16 @@ function(spatula_package name)
   endif()
   add_library(Spatula::${name} ALIAS ${target})
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${name})
+  # Headers are included with their package's name ("laws/lennard_jones.hpp"): in the build tree include/<name> is
+  # a link to the package's src/, in the install tree the headers are in include/spatula/<name>/.
+  file(MAKE_DIRECTORY ${PROJECT_BINARY_DIR}/include)
+  file(CREATE_LINK ${CMAKE_CURRENT_SOURCE_DIR}/src ${PROJECT_BINARY_DIR}/include/${name} SYMBOLIC)
   target_include_directories(${target} ${scope}
-    $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/src>
+    $<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/include>
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/spatula>)
   target_link_libraries(${target} ${scope} ${ARG_DEPENDS})
   file(GLOB headers ${CMAKE_CURRENT_SOURCE_DIR}/src/*.hpp)
-  install(FILES ${headers} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/spatula)
+  install(FILES ${headers} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/spatula/${name})
   install(TARGETS ${target} EXPORT SpatulaTargets
     LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})

@@ -32,6 +32,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from convergence import ASSUMED_ORDER, richardson  # noqa: E402
 from curves import interpolate, pad_slip, pull_off_summary, read_curve  # noqa: E402
 from scenes import app_diagnosis  # noqa: E402
 
@@ -432,6 +433,56 @@ def write_tables(work, scenes, level):
     return text, summaries
 
 
+def error_bars(results):
+    """Markdown: each Table 6-8 quantity (and Table 4's energies at 30, 60, 90 deg) on every level run, as
+    `value ± estimate` on the finest with the extrapolated value (Richardson), for the scenes run on two levels or
+    more. A cell whose runs ended differently on the levels (detached on one, not on another) says so."""
+    lines = ['### Discretization error: every quantity run on two mesh levels or more\n',
+             f'Richardson extrapolation in the in-plane element size (coarse 1, medium 1/4, fine 1/8): with three levels '
+             f'the observed order, with two the assumed order {ASSUMED_ORDER:g}. Values are those of the tables above '
+             '(Delta u_z and Delta Pi_ext to the main snap).\n',
+             '| scene | quantity | ' + ' | '.join(LEVELS) + ' | finest ± estimate | extrapolated | remark |',
+             '|---|---|' + '---|' * len(LEVELS) + '---|---|---|']
+    quantities = (('P_max_nN', 'P_max [nN]'), ('delta_u_z_nm', 'Delta u_z [nm]'),
+                  ('delta_Pi_ext_1e-18J', 'Delta Pi_ext [1e-18 J]'))
+    scenes = sorted({scene for _, summaries in results.values() for scene in summaries})
+    rows = 0
+    for scene in scenes:
+        have = {level: summaries[scene] for level, (_, summaries) in results.items() if scene in summaries}
+        if len(have) < 2:
+            continue
+        outcomes = {s['outcome'] for s in have.values()}
+        for key, label in quantities:
+            by_level = {level: s[key] for level, s in have.items()}
+            finest, estimate, extrapolated, remark = richardson(by_level)
+            if len(outcomes) > 1:
+                remark += '; the runs ended differently on the levels (' + ' / '.join(sorted(outcomes)) + ')'
+            cells = [f'{by_level[level]:.4g}' if level in by_level else '' for level in LEVELS]
+            lines.append(f'| {scene} | {label} | ' + ' | '.join(cells) + f' | {finest:.4g} ± {estimate:.2g} '
+                         f'| {"" if extrapolated is None else f"{extrapolated:.4g}"} | {remark} |')
+            rows += 1
+    rotation = {level: read_curve(directory, 'peel-rotation') for level, (directory, _) in results.items()
+                if complete(directory, 'peel-rotation')}
+    if len(rotation) >= 2:
+        for theta in (30.0, 60.0, 90.0):
+            for key, label in (('Pi_ext_per_Pi_c0', 'Pi_ext / Pi_c0'), ('Pi_int_per_Pi_c0', 'Pi_int / Pi_c0'),
+                               ('Pi_sa_per_Pi_c0', 'Pi_sa / Pi_c0')):
+                by_level = {}
+                for level, curve in rotation.items():
+                    point = interpolate(curve, 'theta_y_deg', theta, [key])
+                    if point:
+                        by_level[level] = point[key]
+                if len(by_level) < 2:
+                    continue
+                finest, estimate, extrapolated, remark = richardson(by_level)
+                cells = [f'{by_level[level]:.4g}' if level in by_level else '' for level in LEVELS]
+                lines.append(f'| peel-rotation at {theta:g} deg | {label} | ' + ' | '.join(cells) +
+                             f' | {finest:.4g} ± {estimate:.2g} | {"" if extrapolated is None else f"{extrapolated:.4g}"} '
+                             f'| {remark} |')
+                rows += 1
+    return '\n'.join(lines) + '\n' if rows else ''
+
+
 def plots(results, directory):
     """Figures 6, 8, 9 and 10 from results = {level: (work directory, summaries)}; returns (file, caption) pairs."""
     import matplotlib
@@ -579,6 +630,8 @@ def main():
             results[level] = (directory, summaries)
             texts.append(text)
     text = '\n'.join(t for t in texts if t)
+    if len(results) >= 2:
+        text += '\n' + error_bars(results)
     print(text)
     if arguments.docs:
         docs = os.path.join(ROOT, 'docs')

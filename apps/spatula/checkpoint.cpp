@@ -1,7 +1,7 @@
 #include "checkpoint.hpp"
 
-#include "hdf5_file.hpp"
-#include "parameter_validation.hpp"
+#include "io/hdf5_file.hpp"
+#include "parameters/parameter_validation.hpp"
 
 #include <cmath>
 #include <filesystem>

@@ -7,7 +7,7 @@
 // end-face masters, the path history (step, external work) and the stage (rotation or lift, and where the lift
 // began), under /checkpoints/<label>, with a signature (node and element counts, enrichment, geometry, material)
 // checked on restart.
-#include "load_stepping.hpp"
+#include "analysis/load_stepping.hpp"
 #include "scene.hpp"
 
 #include <string>

@@ -1,6 +1,6 @@
 #include "collective.hpp"
 
-#include "parameter_validation.hpp"
+#include "parameters/parameter_validation.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
 

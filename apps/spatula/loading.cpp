@@ -1,6 +1,6 @@
 #include "loading.hpp"
 
-#include "parameter_validation.hpp"
+#include "parameters/parameter_validation.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 // ("none", "rotation", "lift"); there is no registry: main.cpp runs no load path for "none", and run_simulation
 // (simulation.cpp) rotates to theta_y for both other types (unless it restarts from a state already in the lift),
 // then raises the face if the type is "lift".
-#include "load_stepping.hpp"
+#include "analysis/load_stepping.hpp"
 
 #include <Teuchos_ParameterList.hpp>
 

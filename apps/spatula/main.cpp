@@ -12,11 +12,11 @@
 #include "scene.hpp"
 #include "simulation.hpp"
 
-#include "mesh_output.hpp"
-#include "mesh_summary.hpp"
-#include "output_directory.hpp"
-#include "parameter_validation.hpp"
-#include "partition.hpp"
+#include "io/mesh_output.hpp"
+#include "mesh/mesh_summary.hpp"
+#include "io/output_directory.hpp"
+#include "parameters/parameter_validation.hpp"
+#include "mesh/partition.hpp"
 
 #include <Teuchos_DefaultComm.hpp>
 #include <Teuchos_GlobalMPISession.hpp>

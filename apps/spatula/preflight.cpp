@@ -1,10 +1,10 @@
 #include "preflight.hpp"
 
 #include "checkpoint.hpp"
-#include "mesh_summary.hpp"
-#include "output_directory.hpp"
-#include "parameter_validation.hpp"
-#include "spatula_mesher.hpp"
+#include "mesh/mesh_summary.hpp"
+#include "io/output_directory.hpp"
+#include "parameters/parameter_validation.hpp"
+#include "mesh/spatula_mesher.hpp"
 
 #include <Teuchos_ParameterList.hpp>
 

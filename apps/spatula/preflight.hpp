@@ -5,8 +5,8 @@
 // change and why.
 #include "scene.hpp"
 
-#include "hex_mesh.hpp"
-#include "partition.hpp"
+#include "mesh/hex_mesh.hpp"
+#include "mesh/partition.hpp"
 
 #include <cstdint>
 #include <string>

@@ -1,6 +1,6 @@
 #include "scene.hpp"
 
-#include "parameter_validation.hpp"
+#include "parameters/parameter_validation.hpp"
 
 namespace spatula::app {
 

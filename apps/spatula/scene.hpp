@@ -1,11 +1,11 @@
 #pragma once
 // A scene: the whole XML input of one run, validated against the parameters every package declares.
-#include "adhesion.hpp"
-#include "discrete_system.hpp"
+#include "contact/adhesion.hpp"
+#include "discretization/discrete_system.hpp"
 #include "loading.hpp"
-#include "newton.hpp"
-#include "spatula_mesher.hpp"
-#include "spatula_shape.hpp"
+#include "solvers/newton.hpp"
+#include "mesh/spatula_mesher.hpp"
+#include "geometry/spatula_shape.hpp"
 
 #include <Teuchos_ParameterList.hpp>
 

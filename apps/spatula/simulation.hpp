@@ -1,8 +1,8 @@
 #pragma once
 // Runs a scene's loading on the meshed spatula: builds the distributed system and solvers, steps the end face,
 // prints a progress line per converged step, and writes curve.csv and field states (rank 0).
-#include "mesh_output.hpp"
-#include "output_directory.hpp"
+#include "io/mesh_output.hpp"
+#include "io/output_directory.hpp"
 #include "scene.hpp"
 
 #include <Teuchos_Comm.hpp>

@@ -8,9 +8,6 @@
 set -eu
 app=$1
 source "$(dirname "$0")/rotation_scene.sh"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
 rotation_scene q1c1 30 '<Parameter name="enrichment" type="string" value="Q1C1"/>
     <Parameter name="quadrature" type="int" value="3"/>' > q1c1.xml
 "$app" q1c1.xml > q1c1.log

@@ -8,10 +8,8 @@
 set -eu
 app=$1
 here=$(cd "$(dirname "$0")" && pwd)
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
 source "$here/rotation_scene.sh"
+enter_scratch_directory
 export OPENBLAS_NUM_THREADS=1
 rotation_scene new 36 > new.xml
 rotation_scene old 36 > old.xml

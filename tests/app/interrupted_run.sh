@@ -12,9 +12,7 @@ shift 2
 flags=("$@")
 here=$(cd "$(dirname "$0")" && pwd)
 source "$here/rotation_scene.sh"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
+enter_scratch_directory
 export OPENBLAS_NUM_THREADS=1
 failures=0
 fail() { echo "FAIL $*"; failures=$((failures + 1)); }

@@ -1,4 +1,5 @@
-# Sourced by the app tests: rotation_scene <directory> <final theta_y> [<extra Adhesion parameters> [<extra Loading
+# Sourced by the app tests: enter_scratch_directory makes a temporary working directory ($work, removed when the
+# script exits) and enters it; rotation_scene <directory> <final theta_y> [<extra Adhesion parameters> [<extra Loading
 # parameters> [<extra Output parameters>]]] prints a coarse frictionless rotation scene (steps of at most 2 deg, smallest 0.01, no mesh output).
 rotation_scene() {
   cat <<XML
@@ -19,4 +20,10 @@ rotation_scene() {
   </ParameterList>
 </ParameterList>
 XML
+}
+
+enter_scratch_directory() {
+  work=$(mktemp -d)
+  trap 'rm -rf "$work"' EXIT
+  cd "$work" || exit 1
 }

@@ -9,10 +9,8 @@
 set -eu
 app=$1
 here=$(cd "$(dirname "$0")" && pwd)
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
 source "$here/rotation_scene.sh"
+enter_scratch_directory
 rotation_scene through 36 > through.xml
 "$app" through.xml > through.log
 /usr/bin/python3 - <<'PY'

@@ -8,9 +8,6 @@
 set -eu
 app=$1
 source "$(dirname "$0")/rotation_scene.sh"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
 rotation_scene strong 27 '<Parameter name="specification" type="string" value="normalized"/>
     <Parameter name="gamma_W" type="double" value="85.2727"/><Parameter name="gamma_L" type="double" value="2.5"/>' > strong.xml
 "$app" strong.xml > strong.log

@@ -1,6 +1,6 @@
 // Meshes a spatula with a non-default pad through the installed library and checks the result.
-#include <spatula_mesher.hpp>
-#include <mesh_summary.hpp>
+#include <mesh/spatula_mesher.hpp>
+#include <mesh/mesh_summary.hpp>
 
 #include <iostream>
 

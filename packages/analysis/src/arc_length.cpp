@@ -1,6 +1,6 @@
 // LoadPath::arc_length: LOCA's arc-length continuation over the Thyra model, with the controlled end-face master
 // exposed as the continuation parameter (SpatulaModel::set_continuation_parameter) and df/dp from the assembly.
-#include "load_stepping.hpp"
+#include "analysis/load_stepping.hpp"
 
 #include <LOCA.H>
 #include <LOCA_Thyra.H>

@@ -1,6 +1,6 @@
-#include "load_stepping.hpp"
+#include "analysis/load_stepping.hpp"
 
-#include "parameter_validation.hpp"
+#include "parameters/parameter_validation.hpp"
 
 #include <Teuchos_TimeMonitor.hpp>
 

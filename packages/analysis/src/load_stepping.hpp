@@ -4,7 +4,7 @@
 //
 // Each converged step is a LoadPoint; the run stops at the target, or with a Failure naming the step, the load,
 // the smallest increment tried and the Newton diagnosis (never a silently accepted state).
-#include "newton.hpp"
+#include "solvers/newton.hpp"
 
 #include <functional>
 #include <memory>

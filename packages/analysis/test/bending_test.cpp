@@ -1,8 +1,8 @@
 // The solid solver on small models: a slender bar bent by end rotations against beam theory, the energy balance
 // Pi_int = int M dtheta, quadratic Newton convergence at large rotation, and the spatula's reactions on 1 vs 2 ranks.
-#include "box_mesh.hpp"
-#include "load_stepping.hpp"
-#include "spatula_mesher.hpp"
+#include "mesh/box_mesh.hpp"
+#include "analysis/load_stepping.hpp"
+#include "mesh/spatula_mesher.hpp"
 
 #include <Teuchos_DefaultComm.hpp>
 #include <Teuchos_DefaultMpiComm.hpp>

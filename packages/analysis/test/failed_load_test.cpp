@@ -1,6 +1,6 @@
 // The step control's memory of a failed load: a load that fails once is tried again; one that fails twice is
 // approached by bisection, tried itself only when the gap cannot be halved, and forgotten once reached.
-#include "load_stepping.hpp"
+#include "analysis/load_stepping.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
-#include "adhesion.hpp"
+#include "contact/adhesion.hpp"
 
-#include "contact_registry.hpp"
-#include "discrete_system.hpp"
-#include "parameter_validation.hpp"
+#include "contact/contact_registry.hpp"
+#include "discretization/discrete_system.hpp"
+#include "parameters/parameter_validation.hpp"
 
 #include <cmath>
 

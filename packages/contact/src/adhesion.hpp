@@ -6,8 +6,8 @@
 //   gamma_L = R0 / r0,  gamma_W = E / w0,  w0 = A_H / (2 pi^2 r0^3)   =>  r0 = R0 / gamma_L, A_H = 2 pi^2 r0^3 E / gamma_W.
 //
 // New laws are added by registering them (contact_registry.hpp); the solver and the assembly never change.
-#include "contact_model.hpp"
-#include "node_space.hpp"
+#include "discretization/contact_model.hpp"
+#include "discretization/node_space.hpp"
 
 #include <Teuchos_ParameterList.hpp>
 

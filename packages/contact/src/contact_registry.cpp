@@ -1,6 +1,6 @@
-#include "contact_registry.hpp"
+#include "contact/contact_registry.hpp"
 
-#include "parameter_validation.hpp"
+#include "parameters/parameter_validation.hpp"
 
 namespace spatula::contact {
 

@@ -2,7 +2,7 @@
 // Registry of contact laws: a name usable in XML ("Adhesion/law") -> a factory building the device contact model
 // for the chosen substrate. Built in: "frictionless" (flat and rough substrates) and "stiction" (flat). A new law is
 // a device integrand (see elements/contact_face.hpp) plus one `add` call; nothing else changes.
-#include "adhesion.hpp"
+#include "contact/adhesion.hpp"
 
 #include <functional>
 #include <map>

@@ -1,13 +1,13 @@
 // Adhesion in the assembled system: the undeformed spatula stores -A_c w_adh (Q1C1 and Q1C2), a stiff block
 // lifted off the substrate feels area x traction with its maximum at r_min, the global tangent with contact and
 // enrichment against finite differences, 1 vs 2 ranks, and the law registry open to new laws.
-#include "adhesion.hpp"
-#include "box_mesh.hpp"
-#include "contact_registry.hpp"
-#include "load_stepping.hpp"
-#include "parameter_validation.hpp"
+#include "contact/adhesion.hpp"
+#include "mesh/box_mesh.hpp"
+#include "contact/contact_registry.hpp"
+#include "analysis/load_stepping.hpp"
+#include "parameters/parameter_validation.hpp"
 #include "same_fields.hpp"
-#include "spatula_mesher.hpp"
+#include "mesh/spatula_mesher.hpp"
 
 #include <Teuchos_DefaultComm.hpp>
 #include <Teuchos_DefaultMpiComm.hpp>

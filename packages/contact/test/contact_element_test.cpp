@@ -1,6 +1,6 @@
 // Contact faces (Q1C1 and Q1C2) with every law and substrate: residual and tangent against finite differences of
 // the energy and residual; the undeformed face at the equilibrium gap stores -w_adh per unit area.
-#include "contact_face.hpp"
+#include "elements/contact_face.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // The adhesion laws: Lennard-Jones values against the closed forms of the paper's Sec. 3 (eqs. 16, 22, 23), its
 // derivatives, regularization and cut-off; stiction reducing to the frictionless law; rough-substrate projection
 // against a brute-force search and its curvature terms against finite differences.
-#include "contact_face.hpp"
+#include "elements/contact_face.hpp"
 
 #include <gtest/gtest.h>
 

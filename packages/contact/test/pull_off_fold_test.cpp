@@ -12,9 +12,9 @@
 // increments before the analytic fold, never past it, and its jump must release that energy. (Measured when written:
 // the last state 0.0011 nm before the fold at 2.5995 nm, 2.1342 against 2.1344 nN nm released; the descent's far
 // state lies in the flat Lennard-Jones tail, where it used to run its 500 iterations without confirming.)
-#include "adhesion.hpp"
-#include "box_mesh.hpp"
-#include "load_stepping.hpp"
+#include "contact/adhesion.hpp"
+#include "mesh/box_mesh.hpp"
+#include "analysis/load_stepping.hpp"
 
 #include <Teuchos_DefaultComm.hpp>
 #include <gtest/gtest.h>

@@ -3,8 +3,8 @@
 // DiscreteSystem calls `assemble` with this rank's faces and the scatter; IntegrandContactModel<Integrand> is the
 // implementation for any device integrand (frictionless or stiction, flat or rough: see packages/contact, whose
 // registry turns the XML choice into one of these).
-#include "contact_face.hpp"
-#include "element_scatter.hpp"
+#include "elements/contact_face.hpp"
+#include "discretization/element_scatter.hpp"
 
 #include <memory>
 #include <string>

@@ -1,7 +1,7 @@
-#include "discrete_system.hpp"
+#include "discretization/discrete_system.hpp"
 
-#include "parameter_validation.hpp"
-#include "solid_kernel.hpp"
+#include "parameters/parameter_validation.hpp"
+#include "discretization/solid_kernel.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
 #include <Tpetra_Assembly_Helpers.hpp>

@@ -7,11 +7,11 @@
 // Residual rows are internal forces [nN] (the master rows: moment [nN nm] and forces on the face, half spatula).
 // A prescribed master keeps an identity row and no coupling (its value lives in the state vector); its internal
 // force is returned as the reaction.
-#include "contact_model.hpp"
-#include "dof_layout.hpp"
-#include "neo_hookean.hpp"
-#include "rigid_face.hpp"
-#include "tpetra_types.hpp"
+#include "discretization/contact_model.hpp"
+#include "discretization/dof_layout.hpp"
+#include "laws/neo_hookean.hpp"
+#include "discretization/rigid_face.hpp"
+#include "discretization/tpetra_types.hpp"
 
 #include <Teuchos_Comm.hpp>
 #include <Teuchos_ParameterList.hpp>

@@ -1,4 +1,4 @@
-#include "dof_layout.hpp"
+#include "discretization/dof_layout.hpp"
 
 namespace spatula::discretization {
 

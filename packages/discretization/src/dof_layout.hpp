@@ -4,7 +4,7 @@
 // of rank 1's nodes, and so on; each rank's block is contiguous (as MUMPS' distributed input wants).
 // Not unknowns: the fixed components listed in the constraints (u_y on the symmetry plane, ...), every component
 // of a rigid end-face node (it follows the masters, see rigid_face.hpp), and dependent enrichment nodes.
-#include "node_space.hpp"
+#include "discretization/node_space.hpp"
 
 #include <array>
 #include <cstdint>

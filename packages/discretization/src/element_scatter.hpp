@@ -8,8 +8,8 @@
 //
 // Rows and columns of prescribed masters are left out of the matrix (they get an identity row elsewhere); their
 // residual is kept: it is the reaction.
-#include "rigid_face.hpp"
-#include "tpetra_types.hpp"
+#include "discretization/rigid_face.hpp"
+#include "discretization/tpetra_types.hpp"
 
 namespace spatula::discretization {
 

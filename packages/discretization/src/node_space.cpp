@@ -1,7 +1,7 @@
-#include "node_space.hpp"
+#include "discretization/node_space.hpp"
 
-#include "hexahedron.hpp"
-#include "parameter_validation.hpp"
+#include "mesh/hexahedron.hpp"
+#include "parameters/parameter_validation.hpp"
 
 #include <algorithm>
 #include <map>

@@ -5,8 +5,8 @@
 // edge (shared by the faces beside it) and at the centre of each contact face. A mid-edge node on an edge that a
 // plain Hex8 element also uses (the edges along the rim axis, shared with P_I) would break conformity: it becomes
 // a dependent node, u = (u_a + u_b) / 2 of the edge's corners, so the edge stays straight there.
-#include "hex_mesh.hpp"
-#include "partition.hpp"
+#include "mesh/hex_mesh.hpp"
+#include "mesh/partition.hpp"
 
 #include <array>
 #include <string>

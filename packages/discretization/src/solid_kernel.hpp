@@ -3,8 +3,8 @@
 // the element's nodes and displacements, evaluates the Neo-Hookean element (elements/solid_element.hpp) on stack
 // arrays, reduces its energy and scatters its residual and tangent into the global system (element_scatter.hpp); an
 // inverted element is reported (atomic max of its id + 1), not assembled.
-#include "element_scatter.hpp"
-#include "solid_element.hpp"
+#include "discretization/element_scatter.hpp"
+#include "elements/solid_element.hpp"
 
 #include <Kokkos_Core.hpp>
 

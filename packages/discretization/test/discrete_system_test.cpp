@@ -1,7 +1,7 @@
 // The assembled system: the tangent (with the rigid end face's chain rule) against finite differences of the
 // residual, identity rows of prescribed masters with their reactions, and identical results on 1 and 2 ranks.
-#include "discrete_system.hpp"
-#include "spatula_mesher.hpp"
+#include "discretization/discrete_system.hpp"
+#include "mesh/spatula_mesher.hpp"
 
 #include <Teuchos_DefaultComm.hpp>
 #include <Teuchos_DefaultMpiComm.hpp>

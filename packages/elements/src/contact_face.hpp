@@ -9,11 +9,11 @@
 // template parameter: evaluate(A, x, phi, dphi/dx, d2phi/dx2 or nullptr) -> within the cut-off?, with A = sum_k N_k A_k
 // the point's anchor: where the stiction law measures tangential travel from (the frictionless law ignores it). The
 // anchors A_k are the reference positions X_k unless a run re-anchors them at a deformed state.
-#include "gauss_rule.hpp"
-#include "lennard_jones.hpp"
-#include "quadrilateral_shape.hpp"
-#include "stiction.hpp"
-#include "substrate.hpp"
+#include "elements/gauss_rule.hpp"
+#include "laws/lennard_jones.hpp"
+#include "elements/quadrilateral_shape.hpp"
+#include "laws/stiction.hpp"
+#include "laws/substrate.hpp"
 
 #include <type_traits>
 

@@ -10,10 +10,10 @@
 //   r_ai   = sum_q P_iJ(F_q) G_aJ w_q detJ_q
 //   K_aibk = sum_q G_aJ A_iJkL(F_q) G_bL w_q detJ_q
 // with an order x order x order Gauss rule. The law provides evaluate(F, W, P, A) (see laws/neo_hookean.hpp).
-#include "gauss_rule.hpp"
-#include "hexahedron.hpp"
-#include "quadrilateral_shape.hpp"
-#include "small_matrix.hpp"
+#include "elements/gauss_rule.hpp"
+#include "mesh/hexahedron.hpp"
+#include "elements/quadrilateral_shape.hpp"
+#include "laws/small_matrix.hpp"
 
 namespace spatula::elements {
 

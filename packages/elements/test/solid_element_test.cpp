@@ -1,7 +1,7 @@
 // The Hex8 solid kernel: residual and tangent against finite differences on a distorted element, the patch test,
 // rigid motions, and bad states.
-#include "neo_hookean.hpp"
-#include "solid_element.hpp"
+#include "laws/neo_hookean.hpp"
+#include "elements/solid_element.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-#include "spatula_shape.hpp"
+#include "geometry/spatula_shape.hpp"
 
-#include "parameter_validation.hpp"
+#include "parameters/parameter_validation.hpp"
 
 #include <algorithm>
 #include <sstream>

@@ -1,7 +1,7 @@
 // The default parameters reproduce the paper's Table 1 and derived values; the relations between Table 1's points
 // and Table 2's radii hold (docs/geometry.md).
-#include "parameter_validation.hpp"
-#include "spatula_shape.hpp"
+#include "parameters/parameter_validation.hpp"
+#include "geometry/spatula_shape.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-#include "mesh_output.hpp"
+#include "io/mesh_output.hpp"
 
-#include "hdf5_file.hpp"
+#include "io/hdf5_file.hpp"
 
 #include <cstdio>
 #include <filesystem>

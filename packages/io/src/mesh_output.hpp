@@ -6,8 +6,8 @@
 // cell scalars). Three XDMF files index it, one grid each so every array is defined on all of its cells:
 // <name>.xmf (the volume mesh), <name>_contact.xmf (the contact surface) and <name>_states.xmf (a temporal
 // collection of the states, rewritten after every state so an unfinished run is still readable).
-#include "hex_mesh.hpp"
-#include "partition.hpp"
+#include "mesh/hex_mesh.hpp"
+#include "mesh/partition.hpp"
 
 #include <map>
 #include <string>

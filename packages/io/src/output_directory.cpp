@@ -1,4 +1,4 @@
-#include "output_directory.hpp"
+#include "io/output_directory.hpp"
 
 #include <cstdlib>
 #include <fstream>

@@ -1,8 +1,8 @@
 // HDF5/XDMF output round trip, and the all-or-nothing output directory.
-#include "hdf5_file.hpp"
-#include "mesh_output.hpp"
-#include "output_directory.hpp"
-#include "spatula_mesher.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/mesh_output.hpp"
+#include "io/output_directory.hpp"
+#include "mesh/spatula_mesher.hpp"
 
 #include <gtest/gtest.h>
 

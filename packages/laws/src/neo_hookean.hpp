@@ -7,7 +7,7 @@
 //   sigma    = P F^T / J = Lambda ln J / J I + mu / J (F F^T - I)              (Cauchy)
 //
 // with mu = E / (2 (1 + nu)), Lambda = 2 mu nu / (1 - 2 nu).
-#include "small_matrix.hpp"
+#include "laws/small_matrix.hpp"
 
 #include <Kokkos_Core.hpp>
 

@@ -10,7 +10,7 @@
 //
 // With r_a = 0 (r_k = r_s) this is phi_LJ(r_s) for every r_s: the frictionless law. Both parts are C1 at r_eq
 // (phi_LJ'(r_eq) = 0).
-#include "lennard_jones.hpp"
+#include "laws/lennard_jones.hpp"
 
 namespace spatula::laws {
 

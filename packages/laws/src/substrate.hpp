@@ -6,7 +6,7 @@
 //   rough: z = base + sum_k z0 exp(-|p - c_k|^2 / h^2) over a triangular lattice c_k of spacing lambda (paper
 //          eq. 28); d by closest-point projection (Newton on the surface parameters), n = (-grad S, 1)/|.|,
 //          grad n = dn/dxi dxi/dx with dxi/dx from the implicit projection condition.
-#include "small_matrix.hpp"
+#include "laws/small_matrix.hpp"
 
 #include <Kokkos_Core.hpp>
 

@@ -1,6 +1,6 @@
 // The Neo-Hookean law: zero stress at F = I, stress and tangent against finite differences of the energy,
 // frame invariance, the small-strain limit, and rejection of inverted states.
-#include "neo_hookean.hpp"
+#include "laws/neo_hookean.hpp"
 
 #include <gtest/gtest.h>
 

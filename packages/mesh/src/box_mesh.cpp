@@ -1,4 +1,4 @@
-#include "box_mesh.hpp"
+#include "mesh/box_mesh.hpp"
 
 #include <algorithm>
 

@@ -1,7 +1,7 @@
 #pragma once
 // A structured box [0, Lx] x [0, Ly] x [0, Lz] of trilinear hexahedra for tests and benchmarks (bars, strips,
 // blocks). Sets: symmetry = the face Y = 0, end_face = the face X = Lx, contact = the face Z = 0.
-#include "hex_mesh.hpp"
+#include "mesh/hex_mesh.hpp"
 
 #include <array>
 

@@ -1,6 +1,6 @@
-#include "hex_mesh.hpp"
+#include "mesh/hex_mesh.hpp"
 
-#include "hexahedron.hpp"
+#include "mesh/hexahedron.hpp"
 
 #include <algorithm>
 #include <cmath>

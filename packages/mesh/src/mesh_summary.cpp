@@ -1,6 +1,6 @@
-#include "mesh_summary.hpp"
+#include "mesh/mesh_summary.hpp"
 
-#include "hexahedron.hpp"
+#include "mesh/hexahedron.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 #pragma once
 // Measures of a spatula mesh, reported in the form of the paper's Table 3 (half spatula) plus the full-spatula
 // contact area and volume and the element quality.
-#include "hex_mesh.hpp"
+#include "mesh/hex_mesh.hpp"
 
 #include <array>
 #include <iosfwd>

@@ -1,4 +1,4 @@
-#include "partition.hpp"
+#include "mesh/partition.hpp"
 
 #include <algorithm>
 #include <numeric>

@@ -2,7 +2,7 @@
 // Splits a mesh over MPI ranks by recursive coordinate bisection of the element centroids. Every rank builds the
 // same (deterministic) serial mesh and keeps its global numbering; the partition decides which rank assembles
 // which elements and owns which nodes, so results do not depend on the rank count.
-#include "hex_mesh.hpp"
+#include "mesh/hex_mesh.hpp"
 
 #include <vector>
 

@@ -1,6 +1,6 @@
-#include "spatula_mesher.hpp"
+#include "mesh/spatula_mesher.hpp"
 
-#include "parameter_validation.hpp"
+#include "parameters/parameter_validation.hpp"
 
 #include <algorithm>
 #include <cmath>

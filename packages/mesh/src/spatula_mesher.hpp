@@ -9,8 +9,8 @@
 //  - P_I: a half-disc cross-section mesh swept along the axis (18k segments on the shaft), its flat face
 //    coinciding with the symmetry plane (shaft), then with the P_III and P_II interfaces.
 // The pad parts are extruded in `layers` equal layers; P_I's half-disc has `layers` segments on its diameter.
-#include "hex_mesh.hpp"
-#include "spatula_shape.hpp"
+#include "mesh/hex_mesh.hpp"
+#include "geometry/spatula_shape.hpp"
 
 #include <Teuchos_ParameterList.hpp>
 

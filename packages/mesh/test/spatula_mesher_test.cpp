@@ -1,9 +1,9 @@
 // The spatula mesh at all three levels: conformity, positive Jacobians, node/side sets on their surfaces,
 // element counts next to the paper's Table 3, contact area, and a non-default shape.
-#include "hexahedron.hpp"
-#include "mesh_summary.hpp"
-#include "partition.hpp"
-#include "spatula_mesher.hpp"
+#include "mesh/hexahedron.hpp"
+#include "mesh/mesh_summary.hpp"
+#include "mesh/partition.hpp"
+#include "mesh/spatula_mesher.hpp"
 
 #include <gtest/gtest.h>
 

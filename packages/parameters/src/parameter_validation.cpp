@@ -1,4 +1,4 @@
-#include "parameter_validation.hpp"
+#include "parameters/parameter_validation.hpp"
 
 #include <Teuchos_ParameterEntryValidator.hpp>
 #include <Teuchos_StringInputSource.hpp>

@@ -1,5 +1,5 @@
 // Validation turns every kind of bad input into an InputError that names the key, the value and what is allowed.
-#include "parameter_validation.hpp"
+#include "parameters/parameter_validation.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
-#include "strip_peel.hpp"
+#include "peel/strip_peel.hpp"
 
-#include "box_mesh.hpp"
-#include "load_stepping.hpp"
+#include "mesh/box_mesh.hpp"
+#include "analysis/load_stepping.hpp"
 
 #include <cmath>
 

@@ -4,7 +4,7 @@
 // across the pull (a dead-load direction). In steady peeling
 //   (F/b)^2 / (2 E h) + (F/b)(1 - cos theta) = w_adh
 // holds whatever the bending stiffness, once the peeled arm is long against the bending length sqrt(D b / F).
-#include "adhesion.hpp"
+#include "contact/adhesion.hpp"
 
 #include <Teuchos_Comm.hpp>
 

@@ -2,7 +2,7 @@
 // Kendall assumes), Q1C2. The pull per width averaged over a window of steady peeling must match the energy
 // balance within 2 % at 90 and 45 deg. (A 10 nm strip has a bending length of 75 nm at 90 deg and would need a
 // strip four times longer than CI affords to reach the steady state.)
-#include "strip_peel.hpp"
+#include "peel/strip_peel.hpp"
 
 #include <Teuchos_DefaultComm.hpp>
 #include <gtest/gtest.h>

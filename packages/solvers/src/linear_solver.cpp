@@ -1,6 +1,6 @@
-#include "linear_solver.hpp"
+#include "solvers/linear_solver.hpp"
 
-#include "parameter_validation.hpp"
+#include "parameters/parameter_validation.hpp"
 
 #include <Stratimikos_DefaultLinearSolverBuilder.hpp>
 #include <Teuchos_AbstractFactoryStd.hpp>

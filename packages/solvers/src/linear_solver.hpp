@@ -15,7 +15,7 @@
 //
 // The MUMPS factorization object lives as long as the factory, so its symbolic analysis is reused by every
 // Newton iteration and load step.
-#include "mumps_solver.hpp"
+#include "solvers/mumps_solver.hpp"
 
 #include <Teuchos_ParameterList.hpp>
 #include <Thyra_LinearOpWithSolveFactoryBase.hpp>

@@ -1,6 +1,6 @@
-#include "mumps_solver.hpp"
+#include "solvers/mumps_solver.hpp"
 
-#include "parameter_validation.hpp"
+#include "parameters/parameter_validation.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_DefaultMpiComm.hpp>

@@ -6,7 +6,7 @@
 // pattern and reused by every later numerical factorization. Symmetric mode uses LDL^T with pivoting (SYM = 2),
 // which handles the indefinite tangents met near instabilities, and reports the number of negative pivots (the
 // inertia: how many eigenvalues of the tangent are negative).
-#include "tpetra_types.hpp"
+#include "discretization/tpetra_types.hpp"
 
 #include <Teuchos_ParameterList.hpp>
 

@@ -1,6 +1,6 @@
-#include "newton.hpp"
+#include "solvers/newton.hpp"
 
-#include "parameter_validation.hpp"
+#include "parameters/parameter_validation.hpp"
 
 #include <NOX_Observer.hpp>
 #include <NOX_Solver_Factory.H>

@@ -3,8 +3,8 @@
 //   (|f|_2 <= absolute tolerance  or  |f|_2 <= relative tolerance * |f_0|_2)  and  |dx|_inf <= update tolerance,
 // and a convergence table per step: iteration, residual norm, update norm, line-search step, negative pivots of
 // the tangent (MUMPS LDL^T inertia), seconds.
-#include "linear_solver.hpp"
-#include "spatula_model.hpp"
+#include "solvers/linear_solver.hpp"
+#include "solvers/spatula_model.hpp"
 
 #include <iosfwd>
 #include <string>

@@ -1,4 +1,4 @@
-#include "spatula_model.hpp"
+#include "solvers/spatula_model.hpp"
 
 #include <Thyra_DetachedVectorView.hpp>
 #include <Thyra_TpetraLinearOp.hpp>

@@ -4,7 +4,7 @@
 // solver factory that NOX uses for the Newton steps. For continuation (LOCA) one prescribed end-face master can
 // be exposed as the parameter p ("load"): its value is then taken from p instead of x, and df/dp is the load
 // vector the assembly sets aside (DiscreteSystem::load_derivatives).
-#include "discrete_system.hpp"
+#include "discretization/discrete_system.hpp"
 
 #include <Thyra_LinearOpWithSolveFactoryBase.hpp>
 #include <Thyra_StateFuncModelEvaluatorBase.hpp>

@@ -1,8 +1,8 @@
 // The MUMPS wrapper on systems with known answers: a solve against a known solution, the inertia of a shifted
 // Laplacian against its exact eigenvalues, reuse of the analysis, orderings, low-rank factors, the cost rule that
 // decides when a kept factorization is replaced, and the linear solvers as NOX reaches them through Thyra.
-#include "linear_solver.hpp"
-#include "mumps_solver.hpp"
+#include "solvers/linear_solver.hpp"
+#include "solvers/mumps_solver.hpp"
 
 #include <Teuchos_DefaultComm.hpp>
 #include <Thyra_LinearOpWithSolveFactoryHelpers.hpp>

@@ -1,9 +1,9 @@
 // Newton on the coarse spatula (no adhesion, the end face rotated by 0.01 rad with the lift free): every linear
 // solver and forcing term reaches the same equilibrium, whose reactions balance (zero net lift force, a positive
 // restoring moment), and a fresh factorization per iteration converges quadratically.
-#include "newton.hpp"
+#include "solvers/newton.hpp"
 #include "same_fields.hpp"
-#include "spatula_mesher.hpp"
+#include "mesh/spatula_mesher.hpp"
 
 #include <Teuchos_DefaultComm.hpp>
 #include <gtest/gtest.h>

@@ -1,0 +1,48 @@
+"""Discretization error estimates from results on several mesh levels (Richardson extrapolation): used by the study
+runner's error bars (scripts/run-study.py) and checked on manufactured values by tests/app/richardson.py."""
+
+LEVELS = ('coarse', 'medium', 'fine')
+# In-plane element size of each level relative to the coarse mesh (in-plane factors 1, 4, 8: the paper's Table 3).
+ELEMENT_SIZE = {'coarse': 1.0, 'medium': 1.0 / 4.0, 'fine': 1.0 / 8.0}
+# Where only two levels ran: the order of convergence assumed (the error benchmark observed 2.2 for P_max from k = 1,
+# 2, 4, docs/error-vs-time.md).
+ASSUMED_ORDER = 2.0
+
+
+def observed_order(values, sizes):
+    """The order p of f = f* + C h^p through three levels (bisection), or None if the changes do not decrease
+    monotonically (not in the asymptotic range)."""
+    (f1, f2, f3), (h1, h2, h3) = values, sizes
+    d12, d23 = f1 - f2, f2 - f3
+    if d12 == 0.0 or d23 == 0.0 or (d12 > 0) != (d23 > 0):
+        return None
+    ratio = d12 / d23
+    g = lambda q: (h1 ** q - h2 ** q) / (h2 ** q - h3 ** q) - ratio
+    low, high = 0.05, 10.0
+    if g(low) * g(high) > 0:
+        return None
+    for _ in range(80):
+        middle = 0.5 * (low + high)
+        low, high = (middle, high) if g(low) * g(middle) > 0 else (low, middle)
+    return 0.5 * (low + high)
+
+
+def richardson(by_level):
+    """The finest value, an estimate of its discretization error, the extrapolated value and a remark (the order
+    observed from three levels, or assumed with two; why the estimate is not reliable where it is not)."""
+    levels = [level for level in LEVELS if level in by_level]
+    values = [by_level[level] for level in levels]
+    sizes = [ELEMENT_SIZE[level] for level in levels]
+    finest, next_finest = values[-1], values[-2]
+    order, remark = ASSUMED_ORDER, f'order {ASSUMED_ORDER:g} assumed (two levels)'
+    if len(levels) >= 3:
+        order = observed_order(values[-3:], sizes[-3:])
+        if order is None:
+            return finest, abs(finest - next_finest), None, ('not in the asymptotic range (the changes between levels '
+                                                             'do not shrink monotonically): estimate = last change')
+        remark = f'order {order:.2f} observed'
+    ratio = sizes[-2] / sizes[-1]
+    correction = (finest - next_finest) / (ratio ** order - 1.0)
+    if abs(correction) > 0.5 * abs(finest):
+        remark += '; not reliable (the estimate exceeds half the value)'
+    return finest, abs(correction), finest + correction, remark

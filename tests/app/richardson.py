@@ -1,0 +1,37 @@
+#!/usr/bin/env python3
+"""The study tables' error bars (scripts/convergence.py) on manufactured values f = f* + C h^p over the levels' in-plane
+element sizes (coarse 1, medium 1/4, fine 1/8): three levels recover p and f* exactly, two levels with the assumed
+order 2 recover f* when p = 2, and alternating changes are reported as outside the asymptotic range."""
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'scripts'))
+from convergence import ELEMENT_SIZE, observed_order, richardson  # noqa: E402
+
+failures = 0
+
+
+def check(condition, what):
+    global failures
+    if not condition:
+        failures += 1
+        print('FAIL', what)
+
+
+for p in (1.0, 1.5, 2.0, 3.0):
+    values = {level: 42.0 - 3.0 * size ** p for level, size in ELEMENT_SIZE.items()}
+    finest, estimate, extrapolated, remark = richardson(values)
+    order = observed_order([values[l] for l in ELEMENT_SIZE], list(ELEMENT_SIZE.values()))
+    check(abs(order - p) < 1e-6, f'observed order {order} for p = {p}')
+    check(abs(extrapolated - 42.0) < 1e-9, f'extrapolated {extrapolated} for p = {p}')
+    check(abs(estimate - abs(values['fine'] - 42.0)) < 1e-9, f'estimate {estimate} for p = {p}')
+    check('observed' in remark, remark)
+two = {level: 42.0 + 3.0 * ELEMENT_SIZE[level] ** 2 for level in ('coarse', 'medium')}
+finest, estimate, extrapolated, remark = richardson(two)
+check(abs(extrapolated - 42.0) < 1e-9 and 'assumed' in remark, f'two levels: {extrapolated}, {remark}')
+finest, estimate, extrapolated, remark = richardson({'coarse': 11.0, 'medium': 9.0, 'fine': 10.0})
+check(extrapolated is None and 'not in the asymptotic range' in remark and estimate == 1.0, f'alternating: {remark}')
+finest, estimate, extrapolated, remark = richardson({'coarse': 100.0, 'medium': 10.0})
+check('not reliable' in remark, f'a change larger than the value: {remark}')
+print('richardson: manufactured values recovered' if failures == 0 else f'{failures} failures')
+sys.exit(1 if failures else 0)
