@@ -56,6 +56,11 @@ def pull_off_summary(work, scene):
         'tail_u_z_nm': detach['u_z_nm'] - before['u_z_nm'],
         'tail_Pi_ext_1e-18J': detach['Pi_ext_1e-18J'] - before['Pi_ext_1e-18J'],
         'worst_balance_error': max(r['balance_error_per_Pi_c0'] for r in rows),
+        # The kind of path (sweep points are compared on it): how much of the adhesion the pre-rotation had already
+        # given up when the lift began, and the jumps on the way.
+        'Pi_sa_at_lift_start': start['Pi_sa_per_Pi_c0'],
+        'jumps_in_rotation': sum(1 for r in rows if r['stage'] == 'rotation' and r['after_jump']),
+        'jumps_in_lift': sum(1 for r in lift[1:] if r['after_jump']),
         'detached': detach['P_z_nN'] < 0.01 * peak['P_z_nN'], 'rows': lift,
     }
 

@@ -386,11 +386,20 @@ def write_tables(work, scenes, level):
             runs = sorted(runs + [(base, 'pull-off-60')])
         if len(runs) > 1:
             markdown.append(f'### {title} ({level} mesh)\n')
-            markdown.append('| factor | P_max [nN] | Delta u_z [nm] | Delta Pi_ext [1e-18 J] | end of the run |')
-            markdown.append('|---|---|---|---|---|')
+            markdown.append('The path of each point (the sweep compares like with like only if they follow the same '
+                            'kind): Pi_sa / Pi_c0 when the lift begins (how much adhesion the rotation to 60 deg '
+                            'already gave up) and the jumps in the rotation and in the lift.\n')
+            markdown.append('| factor | P_max [nN] | Delta u_z [nm] | Delta Pi_ext [1e-18 J] | Pi_sa / Pi_c0 at the lift\'s '
+                            'start | jumps: rotation, lift | end of the run |')
+            markdown.append('|---|---|---|---|---|---|---|')
             for factor, scene in runs:
                 s = summaries[scene]
+                rotation_jumps = s['jumps_in_rotation']
+                if scene == 'pull-off-60' and complete(work, 'peel-rotation'):   # its rotation is the peel run's
+                    rotation_jumps = sum(1 for r in read_curve(work, 'peel-rotation')
+                                         if r['after_jump'] and r['theta_y_deg'] <= 60.0 + 1e-9)
                 markdown.append(f'| {factor:g} | {s["P_max_nN"]:.2f} | {s["delta_u_z_nm"]:.0f} | {s["delta_Pi_ext_1e-18J"]:.0f} '
+                                f'| {s["Pi_sa_at_lift_start"]:.3f} | {rotation_jumps}, {s["jumps_in_lift"]} '
                                 f'| {s["outcome"]} |')
             markdown.append('')
     if 'pull-off-60' in summaries and any(scene in summaries for scene, _, _ in STICTION_RUNS[1:]):
