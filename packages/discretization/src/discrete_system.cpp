@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <map>
+#include <stdexcept>
+#include <string>
 
 namespace spatula::discretization {
 
@@ -33,6 +35,24 @@ SolidParameters SolidParameters::from(const Teuchos::ParameterList& material)
 }
 
 namespace {
+
+// Adds `value` to the diagonal of each row in the range but the `skip`ped ones (prescribed masters): the proximal
+// damping and the identity rows of prescribed masters. A named functor, not a lambda: CUDA cannot compile a device
+// lambda inside the private DiscreteSystem::Implementation.
+struct AddToDiagonal {
+  CrsMatrix::local_matrix_device_type matrix;
+  Kokkos::View<const int*, device_type> column_of;
+  double value;
+  int skip[master_count];
+
+  KOKKOS_INLINE_FUNCTION void operator()(const int row) const
+  {
+    for (int m = 0; m < master_count; ++m)
+      if (row == skip[m]) return;
+    const int column = column_of(row);
+    matrix.sumIntoValues(row, &column, 1, &value, false, true);
+  }
+};
 
 // Undeformed area of a contact face (its corners span the bilinear reference face).
 double face_area(const NodeSpace& space, const std::array<std::int64_t, 9>& face)
@@ -319,6 +339,7 @@ struct DiscreteSystem::Implementation {
     scatter.directions = directions;
     scatter.with_residual = true;
     scatter.with_matrix = with_matrix;
+    scatter.dropped = Kokkos::View<int[1], device_type>("dropped tangent entries");
     scatter.state = state->getLocalViewDevice(Tpetra::Access::ReadOnly);
     scatter.residual = residual->getLocalViewDevice(Tpetra::Access::ReadWrite);
     if (with_matrix) {
@@ -380,6 +401,7 @@ struct DiscreteSystem::Implementation {
       if (options.contact) contact = assemble_contact(scatter, with_jacobian);
       if (with_jacobian && damping > 0.0) add_damping_diagonal();
       if (with_jacobian) add_prescribed_diagonals();
+      if (with_jacobian) check_no_entry_dropped(scatter);
     }
     {
       Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: assembly communication"));
@@ -416,37 +438,32 @@ struct DiscreteSystem::Implementation {
   // Proximal damping on the diagonal of every owned row that is not a prescribed master.
   void add_damping_diagonal()
   {
-    auto local = matrix->getLocalMatrixDevice();
-    const auto columns = column_of;
-    const double eta = damping;
-    int skip[master_count];
-    for (int m = 0; m < master_count; ++m) skip[m] = control.prescribed[m] ? owned->getLocalElement(layout.masters[m]) : -1;
+    AddToDiagonal add{matrix->getLocalMatrixDevice(), column_of, damping, {}};
+    for (int m = 0; m < master_count; ++m)
+      add.skip[m] = control.prescribed[m] ? owned->getLocalElement(layout.masters[m]) : -1;
     const int rows = static_cast<int>(owned->getNodeNumElements());
-    Kokkos::parallel_for("spatula: proximal damping", Kokkos::RangePolicy<execution_space>(0, rows),
-                         KOKKOS_LAMBDA(int row) {
-                           for (int m = 0; m < master_count; ++m)
-                             if (row == skip[m]) return;
-                           const int column = columns(row);
-                           local.sumIntoValues(row, &column, 1, &eta, false, true);
-                         });
+    Kokkos::parallel_for("spatula: proximal damping", Kokkos::RangePolicy<execution_space>(0, rows), add);
   }
 
   // Identity rows of prescribed masters (their owner adds the diagonal once).
   void add_prescribed_diagonals()
   {
-    auto local = matrix->getLocalMatrixDevice();
-    const auto columns = column_of;
     for (int m = 0; m < master_count; ++m) {
       const int unknown = owned->getLocalElement(layout.masters[m]);
       if (!control.prescribed[m] || unknown < 0) continue;
-      Kokkos::parallel_for("spatula: prescribed master diagonal", Kokkos::RangePolicy<execution_space>(0, 1),
-                           KOKKOS_LAMBDA(int) {
-                             const int column = columns(unknown);
-                             const double one = 1.0;
-                             local.sumIntoValues(unknown, &column, 1, &one, false, true);
-                           });
+      const AddToDiagonal add{matrix->getLocalMatrixDevice(), column_of, 1.0, {-1, -1, -1}};
+      Kokkos::parallel_for("spatula: prescribed master diagonal",
+                           Kokkos::RangePolicy<execution_space>(unknown, unknown + 1), add);
     }
     Kokkos::fence();
+  }
+
+  static void check_no_entry_dropped(const ElementScatter& scatter)
+  {
+    auto dropped = Kokkos::create_mirror_view(scatter.dropped);
+    Kokkos::deep_copy(dropped, scatter.dropped);
+    if (dropped(0) != 0)
+      throw std::logic_error(std::to_string(dropped(0)) + " tangent entries fell outside the matrix graph");
   }
 
   // Energies, contact face counts and the inverted-element flag summed over the ranks.

@@ -35,6 +35,9 @@ struct ElementScatter {
   double masters[master_count] = {0.0, 0.0, 0.0};          // alpha, w, s
   RigidFaceDirections directions;
   bool with_residual = true, with_matrix = true;
+  // Tangent entries whose column is not in the row's graph (summed atomically; the assembly checks it is zero: the
+  // graph is built from the same element connectivity, so an entry can only go missing through a bug).
+  Kokkos::View<int[1], device_type> dropped;
 
   KOKKOS_INLINE_FUNCTION RigidFaceMotion motion(int node) const
   {
@@ -148,7 +151,8 @@ struct ElementScatter {
         columns[n] = column_of(unknowns[b]);
         values[n++] = reduced[a][b];
       }
-      matrix.sumIntoValues(unknowns[a], columns, n, values, false, true);
+      const int added = matrix.sumIntoValues(unknowns[a], columns, n, values, false, true);
+      if (added != n) Kokkos::atomic_add(&dropped(0), n - added);
     }
   }
 };
