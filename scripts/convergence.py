@@ -1,9 +1,9 @@
 """Discretization error estimates from results on several mesh levels (Richardson extrapolation): used by the study
 runner's error bars (scripts/run-study.py) and checked on manufactured values by tests/app/richardson.py."""
 
-LEVELS = ('coarse', 'medium', 'fine')
 # In-plane element size of each level relative to the coarse mesh (in-plane factors 1, 4, 8: the paper's Table 3).
 ELEMENT_SIZE = {'coarse': 1.0, 'medium': 1.0 / 4.0, 'fine': 1.0 / 8.0}
+LEVELS = tuple(ELEMENT_SIZE)   # coarse to fine
 # Where only two levels ran: the order of convergence assumed (the error benchmark observed 2.2 for P_max from k = 1,
 # 2, 4, docs/error-vs-time.md).
 ASSUMED_ORDER = 2.0

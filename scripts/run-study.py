@@ -23,6 +23,7 @@ Results: <work>/<level>/<scene>/ per run, <work>/<level>/tables/*.csv and *.md, 
 and its PNGs. Needs a build (build/apps/spatula/spatula). Runs already complete in <work> are not repeated.
 """
 import argparse
+import functools
 import os
 import re
 import shutil
@@ -32,7 +33,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from convergence import ASSUMED_ORDER, richardson  # noqa: E402
+from convergence import ASSUMED_ORDER, LEVELS, richardson  # noqa: E402
 from curves import interpolate, pad_slip, pull_off_summary, read_curve  # noqa: E402
 from scenes import app_diagnosis  # noqa: E402
 
@@ -57,11 +58,17 @@ STICTION_RUNS = (('pull-off-60', 'frictionless', False),
                  ('pull-off-60-stiction-x-held', 'stiction, end face held in X', False))
 # The mesh level each study runs on by default (None: the level written in the scene file).
 STUDY_LEVEL = {'gamma-W': 'coarse', 'gamma-L': 'coarse'}
-LEVELS = ('coarse', 'medium', 'fine')
+
+
+@functools.lru_cache(maxsize=None)
+def scene_parameter(scene, name):
+    """The value (as text) of parameter `name` in xml/studies/<scene>.xml, or None."""
+    match = re.search(rf'name="{name}" type="\w+" value="([^"]*)"', open(os.path.join(SCENES, scene + '.xml')).read())
+    return match.group(1) if match else None
 
 
 def scene_level(scene):
-    return re.search(r'name="level" type="string" value="(\w+)"', open(os.path.join(SCENES, scene + '.xml')).read()).group(1)
+    return scene_parameter(scene, 'level')
 
 
 def planned_runs(study, forced_level):
@@ -123,18 +130,13 @@ def started(work, scene):
     return complete(work, scene) or os.path.exists(os.path.join(work, scene + '.incomplete', 'curve.csv'))
 
 
-def restart_theta(scene):
-    return float(re.search(r'name="restart theta_y" type="double" value="([\d.]+)"',
-                           open(os.path.join(SCENES, scene + '.xml')).read()).group(1))
-
-
 def checkpoint_ready(directory, dependency, scene):
     """The rotation's checkpoints file once it holds the pull-off's checkpoint (complete run, or one that has logged
     writing it), else None."""
     if complete(directory, dependency):
         return os.path.join(directory, dependency, 'checkpoints.h5')
     log = os.path.join(directory, dependency + '.log')
-    label = f"checkpoint theta_y={restart_theta(scene):g} written"
+    label = f"checkpoint theta_y={float(scene_parameter(scene, 'restart theta_y')):g} written"
     if os.path.exists(log) and label in open(log).read():
         for suffix in ('.partial', '.incomplete'):
             path = os.path.join(directory, dependency + suffix, 'checkpoints.h5')
@@ -151,9 +153,9 @@ def resumable(directory, scene_xml):
 
 def target(scene):
     """(stage, final value) the scene's loading ends at: the rotation's theta_y, or the lift's final u_z (relative)."""
-    text = open(os.path.join(SCENES, scene + '.xml')).read()
-    value = lambda name: float(re.search(rf'name="{name}" type="double" value="([\d.]+)"', text).group(1))
-    return ('rotation', value('theta_y')) if 'value="rotation"' in text else ('lift', value('final lift'))
+    if scene_parameter(scene, 'type') == 'rotation':
+        return 'rotation', float(scene_parameter(scene, 'theta_y'))
+    return 'lift', float(scene_parameter(scene, 'final lift'))
 
 
 def progress(work, run, line, elapsed, origin):
@@ -456,19 +458,22 @@ def error_bars(results):
                   ('delta_Pi_ext_1e-18J', 'Delta Pi_ext [1e-18 J]'))
     scenes = sorted({scene for _, summaries in results.values() for scene in summaries})
     rows = 0
+
+    def row(what, label, by_level, remark_suffix=''):
+        finest, estimate, extrapolated, remark = richardson(by_level)
+        cells = [f'{by_level[level]:.4g}' if level in by_level else '' for level in LEVELS]
+        lines.append(f'| {what} | {label} | ' + ' | '.join(cells) + f' | {finest:.4g} ± {estimate:.2g} '
+                     f'| {"" if extrapolated is None else f"{extrapolated:.4g}"} | {remark}{remark_suffix} |')
+
     for scene in scenes:
         have = {level: summaries[scene] for level, (_, summaries) in results.items() if scene in summaries}
         if len(have) < 2:
             continue
         outcomes = {s['outcome'] for s in have.values()}
+        differ = ('; the runs ended differently on the levels (' + ' / '.join(sorted(outcomes)) + ')'
+                  if len(outcomes) > 1 else '')
         for key, label in quantities:
-            by_level = {level: s[key] for level, s in have.items()}
-            finest, estimate, extrapolated, remark = richardson(by_level)
-            if len(outcomes) > 1:
-                remark += '; the runs ended differently on the levels (' + ' / '.join(sorted(outcomes)) + ')'
-            cells = [f'{by_level[level]:.4g}' if level in by_level else '' for level in LEVELS]
-            lines.append(f'| {scene} | {label} | ' + ' | '.join(cells) + f' | {finest:.4g} ± {estimate:.2g} '
-                         f'| {"" if extrapolated is None else f"{extrapolated:.4g}"} | {remark} |')
+            row(scene, label, {level: s[key] for level, s in have.items()}, differ)
             rows += 1
     rotation = {level: read_curve(directory, 'peel-rotation') for level, (directory, _) in results.items()
                 if complete(directory, 'peel-rotation')}
@@ -483,11 +488,7 @@ def error_bars(results):
                         by_level[level] = point[key]
                 if len(by_level) < 2:
                     continue
-                finest, estimate, extrapolated, remark = richardson(by_level)
-                cells = [f'{by_level[level]:.4g}' if level in by_level else '' for level in LEVELS]
-                lines.append(f'| peel-rotation at {theta:g} deg | {label} | ' + ' | '.join(cells) +
-                             f' | {finest:.4g} ± {estimate:.2g} | {"" if extrapolated is None else f"{extrapolated:.4g}"} '
-                             f'| {remark} |')
+                row(f'peel-rotation at {theta:g} deg', label, by_level)
                 rows += 1
     return '\n'.join(lines) + '\n' if rows else ''
 

@@ -198,7 +198,7 @@ void check_memory(const Scene& scene, const MemoryEstimate& estimate)
   message << "the mesh ('Mesh/level' = '" << m.level << "', 'Mesh/refinement factor' = " << m.refinement_factor
           << ", 'Mesh/layers' = " << m.layers << ") has about " << estimate.unknowns << " unknowns and needs about "
           << gigabytes(estimate.bytes) << " with 'Linear Solver/type' = '"
-          << solvers::linear_solver_names()[static_cast<int>(scene.linear_solver.type)] << "'; "
+          << parameters::name_of(scene.linear_solver.type, solvers::linear_solver_names()) << "'; "
           << gigabytes(estimate.available_bytes) << " available. ";
   int fits = 0;
   for (int r = 1; r < m.refinement_factor; ++r)

@@ -114,6 +114,7 @@ private:
   void print_step(const analysis::LoadPoint& p);
   void checkpoint_if_due(const analysis::LoadPoint& p, const Vector& x);
   void write_fields(const Vector& x, double time);
+  RunRecord record_at(const analysis::LoadPoint& p) const;   // what a resumed run needs besides the state at p
   void write_last_state(const Vector& x, const analysis::LoadPoint& p);   // collective
   void write_checkpoint_at(double theta_y);                              // collective
   double load_of(const analysis::LoadPoint& p) const   // theta_y [deg] in the rotation, u_z [nm] in the lift
@@ -219,20 +220,21 @@ void Run::write_fields(const Vector& x, double time)
   if (fields_) fields_->add_state(state);
 }
 
+RunRecord Run::record_at(const analysis::LoadPoint& p) const
+{
+  return {initial_internal_, initial_contact_, peak_moment_, peak_force_, p.seconds,
+          fields_ ? fields_->state_count() : 0, p.step_control};
+}
+
 void Run::write_last_state(const Vector& x, const analysis::LoadPoint& p)
 {
-  const RunRecord record{initial_internal_, initial_contact_, peak_moment_, peak_force_, p.seconds,
-                         fields_ ? fields_->state_count() : 0, p.step_control};
-  write_checkpoint(checkpoint_file(), last_state_label, *system_, x, p, path_stage_, scene_, record);
+  write_checkpoint(checkpoint_file(), last_state_label, *system_, x, p, path_stage_, scene_, record_at(p));
 }
 
 void Run::write_checkpoint_at(double theta_y)
 {
-  const auto& p = path_.last();
-  const RunRecord record{initial_internal_, initial_contact_, peak_moment_, peak_force_, p.seconds,
-                         fields_ ? fields_->state_count() : 0, p.step_control};
-  write_checkpoint(checkpoint_file(), checkpoint_label(theta_y), *system_, path_.state(), p, path_stage_, scene_,
-                   record);
+  write_checkpoint(checkpoint_file(), checkpoint_label(theta_y), *system_, path_.state(), path_.last(), path_stage_,
+                   scene_, record_at(path_.last()));
   if (root_) out_ << "checkpoint " << checkpoint_label(theta_y) << " written\n";
 }
 

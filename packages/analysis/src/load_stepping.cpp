@@ -392,16 +392,15 @@ solvers::MumpsSolver& LoadPath::descent_solver()
 }
 
 double LoadPath::descent_line_search(const Vector& x, const Vector& direction, double energy, double slope,
-                                     double& best_energy) const
+                                     Vector& trial, double& best_energy) const
 {
   // Armijo's condition on Pi, with expansion: negative curvature means going further lowers Pi more.
   auto& system = model_.system();
-  auto trial = system.create_vector();
   double step = 1.0, best_step = 0.0;
   best_energy = energy;
   for (int trial_count = 0; trial_count < 30; ++trial_count) {
-    trial->update(1.0, x, step, direction, 0.0);
-    const auto evaluation = system.evaluate(*trial, nullptr, false);
+    trial.update(1.0, x, step, direction, 0.0);
+    const auto evaluation = system.evaluate(trial, nullptr, false);
     const double value_at = evaluation.internal_energy + evaluation.contact_energy;
     const bool sufficient = evaluation.admissible && value_at <= energy + 1e-4 * step * slope;
     if (sufficient && value_at < best_energy) {
@@ -423,7 +422,7 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
 {
   auto& system = model_.system();
   auto& mumps = descent_solver();
-  auto f = system.create_vector(), direction = system.create_vector();
+  auto f = system.create_vector(), direction = system.create_vector(), trial = system.create_vector();
   for (; d.iteration < jump_.maximum_iterations; ++d.iteration) {
     system.set_damping(d.eta, Teuchos::rcpFromRef(x));   // anchored at x: a pure shift of the tangent, f unchanged
     const auto evaluation = system.evaluate(x, f.get(), true);
@@ -460,7 +459,7 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
     mumps.apply(*f, *direction);
     direction->scale(-1.0);
     double best_energy = energy;
-    const double best_step = descent_line_search(x, *direction, energy, f->dot(*direction), best_energy);
+    const double best_step = descent_line_search(x, *direction, energy, f->dot(*direction), *trial, best_energy);
     d.row(tables_, negative, residual, best_step, best_energy);
     if (best_step == 0.0 && d.eta == 0.0) return std::nullopt;   // no measurable decrease: let Newton finish
     if (best_step == 0.0) {   // no decrease along this direction: stiffen the shift

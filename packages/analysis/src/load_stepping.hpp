@@ -195,7 +195,7 @@ private:
   struct Descent;
   std::variant<int, std::string> descend(Vector& x);
   std::optional<std::string> descend_to_small_gradient(Vector& x, Descent& descent, double small_gradient);
-  double descent_line_search(const Vector& x, const Vector& direction, double energy, double slope,
+  double descent_line_search(const Vector& x, const Vector& direction, double energy, double slope, Vector& trial,
                              double& best_energy) const;
   solvers::MumpsSolver& descent_solver();
 

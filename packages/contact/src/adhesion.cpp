@@ -46,7 +46,8 @@ void AdhesionParameters::declare(Teuchos::ParameterList& adhesion)
   parameters::declare_double(adhesion, "r0", s.lennard_jones.r0, "Lennard-Jones length [nm]", Range::positive());
   // The normalized form of the same constants, at the default Young's modulus (25.266 and 2.5).
   const double gamma_W = s.gamma_W(discretization::SolidParameters{}.young);
-  parameters::declare_double(adhesion, "gamma_W", std::round(1000.0 * gamma_W) / 1000.0, "E / w0, w0 = A_H / (2 pi^2 r0^3)", Range::positive());
+  parameters::declare_double(adhesion, "gamma_W", std::round(1000.0 * gamma_W) / 1000.0,
+                             "E / w0, w0 = A_H / (2 pi^2 r0^3)", Range::positive());
   parameters::declare_double(adhesion, "gamma_L", s.gamma_L(), "R0 / r0 with R0 = 1 nm", Range::positive());
   parameters::declare_double(adhesion, "regularization", 0.8,
                              "r_reg / r_eq: below r_reg the traction continues linearly (C1)", {0.0, 1.0, true, false});
@@ -77,7 +78,8 @@ AdhesionParameters AdhesionParameters::from(const Teuchos::ParameterList& adhesi
   auto& s = p.settings;
   s.law = law;
   s.substrate = parameters::choice<SubstrateKind>(adhesion, "substrate", substrate_names());
-  s.enrichment = parameters::choice<discretization::Enrichment>(adhesion, "enrichment", discretization::enrichment_names());
+  s.enrichment =
+      parameters::choice<discretization::Enrichment>(adhesion, "enrichment", discretization::enrichment_names());
   s.quadrature = adhesion.get<int>("quadrature");
   s.skip_distant_faces = adhesion.get<bool>("skip distant faces");
   s.anchor_at_restart = adhesion.get<std::string>("stiction anchors") == "restart state";

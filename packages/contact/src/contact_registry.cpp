@@ -17,7 +17,7 @@ namespace {
 // The model's description; `law_details` is what the law's own factory adds.
 std::string describe(const AdhesionSettings& s, const std::string& law_details = "")
 {
-  return s.law + " Lennard-Jones adhesion on a " + substrate_names()[static_cast<int>(s.substrate)] + " substrate (A_H = " +
+  return s.law + " Lennard-Jones adhesion on a " + parameters::name_of(s.substrate, substrate_names()) + " substrate (A_H = " +
          std::to_string(s.lennard_jones.hamaker * 10.0) + "e-19 J, r0 = " + std::to_string(s.lennard_jones.r0) +
          " nm, r_reg = " + std::to_string(s.lennard_jones.r_reg) + " nm, r_cut = " +
          std::to_string(s.lennard_jones.r_cut) + " nm), " +
@@ -43,7 +43,7 @@ std::shared_ptr<const discretization::ContactModel> stiction(const AdhesionSetti
 {
   if (s.substrate != SubstrateKind::flat)
     throw parameters::InputError("parameter 'Adhesion/law' = 'stiction' needs 'Adhesion/substrate' = 'flat' (got '" +
-                                 substrate_names()[static_cast<int>(s.substrate)] +
+                                 parameters::name_of(s.substrate, substrate_names()) +
                                  "'): tangential travel on a curved substrate is not defined");
   elements::StictionIntegrand integrand{{s.lennard_jones, s.substrate_height}};
   const std::string anchors = s.anchor_at_restart ? ", travel measured from the restart state"

@@ -122,6 +122,7 @@ struct DiscreteSystem::Implementation {
   DeviceView<double* [3]> node_offset;
   DeviceView<int* [2]> node_parent;
   DeviceView<int*> column_of;
+  DeviceView<int[1]> dropped_entries;   // ElementScatter::dropped (made once Kokkos is up, with the views)
   ContactFaceViews contact_faces;
 
   Implementation(const mesh::HexMesh& mesh_, const mesh::Partition& partition, const Constraints& constraints,
@@ -183,6 +184,7 @@ struct DiscreteSystem::Implementation {
       throw std::logic_error("end-face masters missing from the overlap map");
 
     build_views(local_of);
+    dropped_entries = DeviceView<int[1]>("dropped tangent entries");
     build_graph();
     matrix = Teuchos::rcp(new FECrsMatrix(graph));
     residual = Teuchos::rcp(new FEMultiVector(owned, graph->getImporter(), 1));
@@ -339,7 +341,8 @@ struct DiscreteSystem::Implementation {
     scatter.directions = directions;
     scatter.with_residual = true;
     scatter.with_matrix = with_matrix;
-    scatter.dropped = Kokkos::View<int[1], device_type>("dropped tangent entries");
+    scatter.dropped = dropped_entries;
+    if (with_matrix) Kokkos::deep_copy(dropped_entries, 0);
     scatter.state = state->getLocalViewDevice(Tpetra::Access::ReadOnly);
     scatter.residual = residual->getLocalViewDevice(Tpetra::Access::ReadWrite);
     if (with_matrix) {

@@ -82,10 +82,9 @@ XdmfOutput::XdmfOutput(const std::string& directory, const std::string& name, co
     throw std::runtime_error("'" + h5_path_ + "' holds another mesh");
   for (int k = 0; k < keep_states; ++k) {
     const std::string group = state_group(k);
-    for (const auto& field : cell_scalar_names)
-      if (!file.exists(group + "/" + field)) throw std::runtime_error("'" + h5_path_ + "' lacks " + group + "/" + field);
-    for (const auto& field : node_vector_names)
-      if (!file.exists(group + "/" + field)) throw std::runtime_error("'" + h5_path_ + "' lacks " + group + "/" + field);
+    for (const auto* fields : {&cell_scalar_names, &node_vector_names})
+      for (const auto& field : *fields)
+        if (!file.exists(group + "/" + field)) throw std::runtime_error("'" + h5_path_ + "' lacks " + group + "/" + field);
     const auto time = file.read_doubles(group + "/time");
     if (time.size() != 1) throw std::runtime_error("'" + h5_path_ + "' lacks " + group + "/time");
     times_.push_back(time[0]);

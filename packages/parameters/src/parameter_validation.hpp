@@ -70,8 +70,7 @@ const std::string& name_of(Choice value, const std::vector<std::string>& names)
 template <class Choice>
 Choice choice(const ParameterList& list, const std::string& name, const std::vector<std::string>& names)
 {
-  const auto& value = list.get<std::string>(name);
-  return static_cast<Choice>(std::find(names.begin(), names.end(), value) - names.begin());
+  return choice_named<Choice>(list.get<std::string>(name), names).value();   // validated: always one of `names`
 }
 // A sublist declared empty accepts any keys (e.g. a free-form list handed to a third-party solver).
 ParameterList& declare_sublist(ParameterList& list, const std::string& name, const std::string& doc);

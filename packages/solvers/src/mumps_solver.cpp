@@ -238,7 +238,7 @@ struct MumpsSolver::Implementation {
       statistics.ordering_used = ordering_name(infog(id, 7));
       const MumpsOrdering asked = parameters.ordering;
       if (asked != MumpsOrdering::automatic && infog(id, 7) != ordering_codes[static_cast<int>(asked)])
-        throw std::runtime_error("'Linear Solver/MUMPS/ordering' = " + mumps_ordering_names()[static_cast<int>(asked)] +
+        throw std::runtime_error("'Linear Solver/MUMPS/ordering' = " + parameters::name_of(asked, mumps_ordering_names()) +
                                  " is not built into the MUMPS library this program uses (it ordered with " +
                                  statistics.ordering_used + "); choose another ordering or automatic");
       analysed = true;
