@@ -20,7 +20,9 @@ on the coarse one about 3. `--mesh LEVEL` runs every
 scene of the study on LEVEL. A run's scene file is the study XML with the level replaced, written beside its output.
 
 Results: <work>/<level>/<scene>/ per run, <work>/<level>/tables/*.csv and *.md, and with --docs docs/validation.md
-and its PNGs. Needs a build (build/apps/spatula/spatula). Runs already complete in <work> are not repeated.
+and its PNGs. Needs a build (build/apps/spatula/spatula). Runs already complete in <work> are not repeated. Each
+complete run's curve, scene, log (and a rotation's checkpoints) are kept in docs/study-runs/<level>/<scene>/ (commit
+them): a study on another machine or with an empty <work> restores them instead of running them again.
 """
 import argparse
 import functools
@@ -106,6 +108,45 @@ PAPER_PI_C0 = 759.3   # E R0^3, the paper's exact-law contact energy of the unde
 
 def complete(work, scene):
     return os.path.exists(os.path.join(work, scene, 'curve.csv'))
+
+
+# A complete run's results are kept in the repository (docs/study-runs/<level>/<scene>/), so that they outlive the
+# work directory (a new machine, a cleaned disk): its curve, scene, mesh summary and log, and the checkpoints of a
+# rotation that pull-offs start from. A later study restores them into the work directory instead of running again.
+ARCHIVE = os.path.join(ROOT, 'docs', 'study-runs')
+KEPT_FILES = ('curve.csv', 'scene.xml', 'mesh_summary.csv', 'mesh_summary.txt', '.spatula-output')
+
+
+def archive(work, level, scene):
+    """Copies the complete run's kept files into ARCHIVE/<level>/<scene>/."""
+    source, kept = os.path.join(work, level, scene), os.path.join(ARCHIVE, level, scene)
+    os.makedirs(kept, exist_ok=True)
+    names = KEPT_FILES + (('checkpoints.h5',) if scene in DEPENDS.values() else ())
+    for name in names:
+        if os.path.exists(os.path.join(source, name)):
+            shutil.copyfile(os.path.join(source, name), os.path.join(kept, name))
+    log = os.path.join(work, level, scene + '.log')
+    if os.path.exists(log):
+        shutil.copyfile(log, os.path.join(kept, 'run.log'))
+
+
+def restore(work, runs):
+    """Puts the archived complete runs among `runs` that <work> lacks back into <work>; returns them."""
+    restored = []
+    for level, scene in runs:
+        kept, target_directory = os.path.join(ARCHIVE, level, scene), os.path.join(work, level, scene)
+        if complete(os.path.join(work, level), scene) or not os.path.exists(os.path.join(kept, 'curve.csv')):
+            continue
+        os.makedirs(target_directory + '.restoring', exist_ok=True)
+        for name in os.listdir(kept):
+            if name != 'run.log':
+                shutil.copyfile(os.path.join(kept, name), os.path.join(target_directory + '.restoring', name))
+        if os.path.exists(os.path.join(kept, 'run.log')):
+            shutil.copyfile(os.path.join(kept, 'run.log'), os.path.join(work, level, scene + '.log'))
+        shutil.rmtree(target_directory, ignore_errors=True)
+        os.replace(target_directory + '.restoring', target_directory)
+        restored.append((level, scene))
+    return restored
 
 
 def outcome(work, scene):
@@ -197,6 +238,8 @@ def step_lines(log):
 def run_all(runs, work, jobs):
     """Runs the (level, scene) pairs not yet complete in <work>/<level>, `jobs` at a time (a stopped one resumed from
     its last checkpoint); returns the failed ones."""
+    for level, scene in restore(work, runs):
+        print(f'[{level} {scene}] restored from {os.path.relpath(ARCHIVE, ROOT)}/ (complete)', flush=True)
     pending = [r for r in runs if not complete(os.path.join(work, r[0]), r[1])]
     running = {}
     failed = []
@@ -257,6 +300,8 @@ def run_all(runs, work, jobs):
                 print(f'[{level} {scene}] {status} after {time.time() - started:.0f} s', flush=True)
                 if process.returncode != 0:
                     failed.append(run)
+                elif complete(os.path.join(work, level), scene):
+                    archive(work, level, scene)
                 del running[run]
     return failed
 
@@ -628,6 +673,11 @@ def main():
         sys.exit(f'{APP} not found: build first (bash scripts/build.sh)')
     runs = planned_runs(arguments.study, arguments.mesh)
     started = time.time()
+    for level, scene in runs:   # complete runs of an earlier study not yet kept (and with --no-run, the kept ones)
+        if complete(os.path.join(arguments.work, level), scene) and not complete(os.path.join(ARCHIVE, level), scene):
+            archive(arguments.work, level, scene)
+    if arguments.no_run:
+        restore(arguments.work, runs)
     failed = [] if arguments.no_run else run_all(runs, arguments.work, arguments.jobs)
     print(f'study {arguments.study}: {len(runs) - len(failed)} of {len(runs)} runs complete in '
           f'{time.time() - started:.0f} s' + (f'; failed: {", ".join(" ".join(f) for f in failed)}' if failed else ''),
