@@ -12,12 +12,21 @@ after 'maximum iterations' = 12; NOX's scaled norms):
   default                 the defaults before the fold-aware rule: Eisenstat-Walker, the give-up rule off
   after-failure           the give-up rule 2 x 0.5 only in attempts that retry a load after a failed step
   cost-refactor           after-failure with 'Linear Solver/refactor' = cost (measured time decides refactoring)
-  new                     today's defaults (as the parameter list declares them)
+  session-3               the defaults before the three rules below (secant predictor, 'short steps' 0,
+                          'absolute tolerance' 1e-9)
+  quadratic               session-3 with the quadratic predictor (Rotation/Lift Steps 'predictor')
+  quadratic-short-steps   and 'short steps' 2 x 0.125 (a line search cut short twice ends any attempt)
+  new                     today's defaults (as the parameter list declares them; with the three rules, the
+                          'absolute tolerance' 1e-6)
 (A 'resume' rule, run 2026-12-02 and since removed, restarted the increments at half the failed one once the path
 had passed a failed load: 1,256 -> 1,231 tangents at 45 deg, 1,185 -> 1,215 at 60 deg, CPU 0.98 / 1.07: no gain.
 A fold predictor, run the same day and since removed, extrapolated 1 / |dx/dload|^2 of the last two steps to zero
 (exact for a quadratic fold) and halved the increments towards the predicted fold: 1,255 -> 1,247 tangents at
-45 deg, failed attempts 100 -> 93: the spatula's folds (a contact zone letting go) give no warning two steps ahead.)
+45 deg, failed attempts 100 -> 93: the spatula's folds (a contact zone letting go) give no warning two steps ahead.
+A memory of the shift in the jumps' energy descents, run 2026-12-02 (fourth session) and since removed, started each
+search for a positive definite shifted tangent at the last shift that had sufficed instead of climbing from 1e-6:
+the descents' factorizations rose from 468 to 906 at 45 deg (the larger shifts damp the steps that escape a saddle),
+and with the looser tolerance one descent cycled without settling.)
 It records CPU seconds, tangents, Newton iterations, failed step attempts, and the change of P_max, Delta u_z and
 Delta Pi_ext against the base. Runs one after another (a quiet machine: CPU times are compared):
 
@@ -40,12 +49,16 @@ from curves import pull_off_summary  # noqa: E402
 from scenes import benchmark_scene  # noqa: E402
 
 APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula'))
+# The rules added later (quadratic predictor, short steps, absolute tolerance 1e-6) switched off: the configurations
+# recorded before them run as they were.
+SESSION_3 = {'short steps': 0, 'absolute tolerance': 1e-9, 'Steps': {'predictor': 'secant'}}
 LAG = {'Linear Solver': {'refactor': 'lag'}}   # a factorization serves 4 tangents (before 'refactor' = cost)
-BEFORE = {'non-contracting iterations': 0, 'forcing term': 'constant', **LAG}   # before issue 15
+BEFORE = {**SESSION_3, 'non-contracting iterations': 0, 'forcing term': 'constant', **LAG}   # before issue 15
 ALWAYS = {'give up': 'always'}   # the rule in every attempt, as it was before 'give up' existed
-GIVE_UP = {'non-contracting iterations': 2, 'contraction': 0.5, **ALWAYS, **LAG}
-AFTER_FAILURE = {'non-contracting iterations': 2, 'contraction': 0.5, 'give up': 'after a failed step'}
-CONFIGURATIONS = {   # each as the rows of docs/step-control.csv were run ('Linear Solver': that list's entries)
+GIVE_UP = {**SESSION_3, 'non-contracting iterations': 2, 'contraction': 0.5, **ALWAYS, **LAG}
+AFTER_FAILURE = {**SESSION_3, 'non-contracting iterations': 2, 'contraction': 0.5, 'give up': 'after a failed step'}
+CONFIGURATIONS = {   # each as the rows of docs/step-control.csv were run ('Linear Solver': that list's entries,
+                     # 'Steps': entries of both step lists)
     'base': BEFORE,
     'non-contracting-3': {**BEFORE, 'non-contracting iterations': 3, 'contraction': 1.0, **ALWAYS},
     'non-contracting-2': {**BEFORE, 'non-contracting iterations': 2, 'contraction': 1.0, **ALWAYS},
@@ -54,9 +67,12 @@ CONFIGURATIONS = {   # each as the rows of docs/step-control.csv were run ('Line
     'unscaled': {**BEFORE, 'norms': 'unscaled'},
     'constant': {**GIVE_UP, 'forcing term': 'constant'},   # runs 6, 7
     'Eisenstat-Walker': GIVE_UP,                            # runs 6, 7
-    'default': {'non-contracting iterations': 0, **LAG},   # Eisenstat-Walker, no give-up rule
+    'default': {**SESSION_3, 'non-contracting iterations': 0, **LAG},   # Eisenstat-Walker, no give-up rule
     'after-failure': {**AFTER_FAILURE, **LAG},
     'cost-refactor': {**AFTER_FAILURE, 'Linear Solver': {'refactor': 'cost'}},
+    'session-3': SESSION_3,
+    'quadratic': {'short steps': 0, 'absolute tolerance': 1e-9},
+    'quadratic-short-steps': {'absolute tolerance': 1e-9},
     'new': {},
 }
 QUANTITIES = ('P_max_nN', 'delta_u_z_nm', 'delta_Pi_ext_1e-18J')
@@ -67,8 +83,9 @@ def measure(work, label, newton, mesh, theta):
     xml = os.path.join(work, directory + '.xml')
     newton = dict(newton)
     linear = newton.pop('Linear Solver', None)
+    steps = newton.pop('Steps', None)
     open(xml, 'w').write(benchmark_scene(directory, mesh=mesh, theta_y=float(theta), newton=newton or None,
-                                         linear_solver=linear))
+                                         linear_solver=linear, steps=steps))
     environment = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     started = time.time()

@@ -20,20 +20,20 @@ def parameter_list(name, entries, indent=0):
 
 def benchmark_scene(name, *, mesh='coarse', refinement=1, adhesion=None, loading='lift', theta_y=60.0,
                     final_lift=600.0, rotation_maximum=2.0, lift_maximum=5.0, linear_solver=None, newton=None,
-                    fields=-1):
+                    steps=None, fields=-1):
     """A frictionless scene on a flat substrate unless `adhesion` (the Adhesion list's entries) says otherwise:
     rotation to theta_y with zero net force, then (loading 'lift') a lift of final_lift nm beyond the rotated state.
-    Step maxima in deg and nm, minima 0.01. fields: -1 writes no fields, 0 the first and last states only, n every
-    n-th state. The output directory is `name`."""
-    steps = {'Rotation Steps': {'maximum': float(rotation_maximum), 'minimum': 0.01}}
+    Step maxima in deg and nm, minima 0.01; `steps`: further entries of both step lists. fields: -1 writes no
+    fields, 0 the first and last states only, n every n-th state. The output directory is `name`."""
+    step_lists = {'Rotation Steps': {'maximum': float(rotation_maximum), 'minimum': 0.01, **(steps or {})}}
     load = {'type': loading, 'theta_y': float(theta_y)}
     if loading == 'lift':
         load.update({'final lift': float(final_lift), 'final lift relative': True})
-        steps['Lift Steps'] = {'maximum': float(lift_maximum), 'minimum': 0.01}
+        step_lists['Lift Steps'] = {'maximum': float(lift_maximum), 'minimum': 0.01, **(steps or {})}
     entries = {
         'Mesh': {'level': mesh, **({'refinement factor': refinement} if refinement != 1 else {})},
         'Adhesion': {'law': 'frictionless', **(adhesion or {})},
-        'Loading': {**load, **steps},
+        'Loading': {**load, **step_lists},
         **({'Linear Solver': linear_solver} if linear_solver else {}),
         **({'Nonlinear Solver': newton} if newton else {}),
         'Output': {'directory': name, 'write mesh': fields >= 0, 'field interval': max(fields, 0)},

@@ -3,7 +3,9 @@
 # after a failed step: the defaults): the coarse rotation through its first instability to 36 deg ends in the same
 # state (theta_y, M_y, u_z, the same jumps) as with the rule off (an attempt ends only after 12 iterations), with at
 # least 20 % fewer tangents; only first attempts at a load (before any failure there) may run their 12 iterations,
-# and with 'give up' = always none does.
+# and with 'give up' = always none does. These three run with 'short steps' = 0; a fourth with the defaults
+# ('short steps' 2 x 0.125 too: any attempt whose line search cut the step short twice ends) must end in the same
+# state with no more tangents than the second, and the rule must have ended an attempt.
 # usage: hopeless_attempts.sh <spatula>
 set -eu
 app=$1
@@ -14,17 +16,21 @@ export OPENBLAS_NUM_THREADS=1
 rotation_scene new 36 > new.xml
 rotation_scene old 36 > old.xml
 rotation_scene always 36 > always.xml
+rotation_scene short 36 > short.xml
 /usr/bin/python3 - <<'PY'
 def nonlinear(name, entries):
     text = open(f'{name}.xml').read()
     open(f'{name}.xml', 'w').write(text.replace('<ParameterList name="Output">', '<ParameterList name="Nonlinear Solver">'
         + entries + '</ParameterList>\n  <ParameterList name="Output">'))
-nonlinear('old', '<Parameter name="non-contracting iterations" type="int" value="0"/>')
-nonlinear('always', '<Parameter name="give up" type="string" value="always"/>')
+no_short_steps = '<Parameter name="short steps" type="int" value="0"/>'
+nonlinear('old', '<Parameter name="non-contracting iterations" type="int" value="0"/>' + no_short_steps)
+nonlinear('new', no_short_steps)
+nonlinear('always', '<Parameter name="give up" type="string" value="always"/>' + no_short_steps)
 PY
 "$app" new.xml > new.log
 "$app" old.xml > old.log
 "$app" always.xml > always.log
+"$app" short.xml > short.log
 /usr/bin/python3 - <<'PY'
 import csv
 import re
@@ -36,19 +42,28 @@ def run(name):
     return rows, tangents, failed, log
 old_rows, old_tangents, old_failed, _ = run('old')
 jumps = lambda rows: [round(float(r['theta_y_deg']), 3) for r in rows if r['after_jump'] == '1']
-for name in ('new', 'always'):
-    rows, tangents, failed, log = run(name)
+def same_state(name, rows):
     a, b = rows[-1], old_rows[-1]
     for key in ('theta_y_deg', 'M_y_nNnm', 'u_z_nm', 'Pi_sa_1e-18J'):
         x, y = float(a[key]), float(b[key])
         assert abs(x - y) <= 1e-6 * max(1.0, abs(y)), (name, key, x, y)
     assert jumps(rows) == jumps(old_rows) and jumps(rows), (name, jumps(rows), jumps(old_rows))
+for name in ('new', 'always'):
+    rows, tangents, failed, log = run(name)
+    same_state(name, rows)
     assert tangents <= 0.8 * old_tangents, (name, tangents, old_tangents)
     assert '|f| stopped shrinking' in log, name
     # First attempts at a load keep all their iterations unless the rule applies always.
     full = failed.count(12)
     assert (full == 0) if name == 'always' else (1 <= full < old_failed.count(12)), (name, failed, old_failed)
-    print(f'{name}: same state at 36 deg (M_y {float(a["M_y_nNnm"]):.4f} nN nm, jumps at {jumps(rows)}); tangents '
+    print(f'{name}: same state at 36 deg (M_y {float(rows[-1]["M_y_nNnm"]):.4f} nN nm, jumps at {jumps(rows)}); tangents '
           f'{tangents} against {old_tangents} with the rule off; failed attempts ran {sorted(failed)} iterations '
           f'(rule off: {sorted(old_failed)})')
+new_tangents = run('new')[1]
+rows, tangents, failed, log = run('short')
+same_state('short', rows)
+ended = log.count('the line search cut the steps short')
+assert ended >= 1 and tangents <= new_tangents, ('short', ended, tangents, new_tangents)
+print(f'short steps: same state at 36 deg; {ended} attempts ended by the rule; tangents {tangents} against '
+      f'{new_tangents} without it')
 PY

@@ -84,6 +84,12 @@ double FailedLoad::tolerance(double value)
   return 1e-12 * std::max(1.0, std::abs(value));
 }
 
+const std::vector<std::string>& StepParameters::predictor_names()
+{
+  static const std::vector<std::string> names = {"secant", "quadratic"};
+  return names;
+}
+
 void StepParameters::declare(Teuchos::ParameterList& list, const StepParameters& d)
 {
   using parameters::Range;
@@ -94,6 +100,9 @@ void StepParameters::declare(Teuchos::ParameterList& list, const StepParameters&
                           "this many Newton iterations", Range::closed(1, 100));
   parameters::declare_double(list, "growth", d.growth, "increment growth factor", {1.0, 10.0, false, false});
   parameters::declare_double(list, "cut", d.cut, "increment factor after a failed step", {0.0, 1.0, true, true});
+  parameters::declare_string(list, "predictor", parameters::name_of(d.predictor, predictor_names()),
+                             "the trial state of a step: extrapolated from the last two converged states (secant) or "
+                             "the last three (quadratic in the load)", predictor_names());
 }
 
 StepParameters StepParameters::from(const Teuchos::ParameterList& list, const std::string& path)
@@ -105,6 +114,7 @@ StepParameters StepParameters::from(const Teuchos::ParameterList& list, const st
   p.easy_iterations = list.get<int>("easy iterations");
   p.growth = list.get<double>("growth");
   p.cut = list.get<double>("cut");
+  p.predictor = parameters::choice<Predictor>(list, "predictor", predictor_names());
   if (p.minimum > p.initial)
     parameters::fail(parameters::key_path(path, "minimum"), p.minimum, "must not exceed 'initial' = " + std::to_string(p.initial));
   if (p.maximum < p.initial)
@@ -115,7 +125,8 @@ StepParameters StepParameters::from(const Teuchos::ParameterList& list, const st
 LoadPath::LoadPath(solvers::SpatulaModel& model, const solvers::NewtonSolver& newton, std::ostream* log,
                    bool convergence_tables)
     : model_(model), newton_(newton), log_(log), tables_(convergence_tables),
-      x_(model.system().create_vector()), previous_(model.system().create_vector()), started_(now())
+      x_(model.system().create_vector()), previous_(model.system().create_vector()),
+      older_(model.system().create_vector()), started_(now())
 {
   auto& system = model_.system();
   system.set_control({{true, true, true}});
@@ -168,7 +179,7 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
   const char* name = load_name(controlled);
   double value = system.master(*x_, controlled);
   double increment = steps.initial * unit;
-  previous_increment_ = 0.0;   // no predictor across a change of the controlled load
+  previous_increment_ = older_increment_ = 0.0;   // no predictor across a change of the controlled load
   const double direction = target >= value ? 1.0 : -1.0;
   auto trial = system.create_vector();
   FailedLoad failed(direction, steps.minimum * unit, steps.cut);
@@ -181,7 +192,7 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
   while (!detached_ && direction * (target - value) > 1e-12 * std::max(1.0, std::abs(target))) {
     increment = failed.limit(std::min(increment, direction * (target - value)), value);
     const double load = value + direction * increment;
-    predict(*trial, controlled, load, increment);
+    predict(*trial, controlled, load, increment, steps.predictor);
     std::ostringstream table;
     const auto result = newton_.solve(*trial, tables_ ? &table : nullptr, failed.known());
     if (!result.converged) {
@@ -198,7 +209,7 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
         failed.forget();
         increment = steps.initial * unit;
       }
-      previous_increment_ = 0.0;   // no predictor after a failure
+      previous_increment_ = older_increment_ = 0.0;   // no predictor after a failure
       continue;
     }
     const int iterations = result.iterations.empty() ? 0 : result.iterations.back().iteration;
@@ -214,7 +225,7 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
                         << " nN nm, full spatula): a snap within the step; cutting the increment\n";
         failed.failed(load);
         increment *= steps.cut;
-        previous_increment_ = 0.0;
+        previous_increment_ = older_increment_ = 0.0;
         continue;
       }
       if (past_folds_ == PastFolds::stop) {
@@ -249,12 +260,28 @@ const char* LoadPath::load_name(Master controlled)
   return controlled == Master::rotation ? "rotation theta_y - theta_s" : controlled == Master::lift ? "lift" : "slide";
 }
 
-void LoadPath::predict(Vector& trial, Master controlled, double load, double increment) const
+PredictorWeights predictor_weights(StepParameters::Predictor predictor, double increment, double previous_increment,
+                                   double older_increment)
 {
-  // Secant predictor from the last two converged states (scaled to the new increment).
-  trial.assign(*x_);
-  if (previous_increment_ > 0.0)
-    trial.update(increment / previous_increment_, *x_, -increment / previous_increment_, *previous_, 1.0);
+  const double t = increment, h2 = previous_increment, h1 = older_increment;
+  PredictorWeights w;
+  if (predictor == StepParameters::Predictor::quadratic && h2 > 0.0 && h1 > 0.0) {
+    // The Lagrange polynomial through (-h1 - h2, older), (-h2, previous), (0, current) at t, in Newton's form:
+    // current + (t + c) (current - previous) / h2 - c (previous - older) / h1,  c = t (t + h2) / (h1 + h2).
+    const double c = t * (t + h2) / (h1 + h2);
+    w = {1.0 + (t + c) / h2, -(t + c) / h2 - c / h1, c / h1};
+  } else if (h2 > 0.0) {   // secant: current + t (current - previous) / h2
+    w = {1.0 + t / h2, -t / h2, 0.0};
+  }
+  return w;
+}
+
+void LoadPath::predict(Vector& trial, Master controlled, double load, double increment,
+                       StepParameters::Predictor predictor) const
+{
+  const auto w = predictor_weights(predictor, increment, previous_increment_, older_increment_);
+  trial.update(w.previous, *previous_, w.older, *older_, 0.0);
+  trial.update(w.current, *x_, 1.0);
   model_.system().set_master(trial, controlled, load);
 }
 
@@ -307,6 +334,8 @@ std::variant<double, Failure> LoadPath::pass_fold(Master controlled, double unre
 void LoadPath::take_step(const Vector& state, const LoadPoint& point, double increment, const std::string& table,
                          const Callback& on_point)
 {
+  older_->assign(*previous_);
+  older_increment_ = previous_increment_;
   previous_->assign(*x_);
   x_->assign(state);
   previous_increment_ = increment;
@@ -320,7 +349,7 @@ void LoadPath::accept(const Vector& x, int iterations, int negative_pivots, cons
 {
   previous_->assign(*x_);
   x_->assign(x);
-  previous_increment_ = 0.0;
+  previous_increment_ = older_increment_ = 0.0;
   points_.push_back(measure(*x_, iterations, negative_pivots));
   if (on_point) on_point(points_.back(), *x_);
 }
@@ -346,7 +375,7 @@ void LoadPath::restart(const Vector& x, const LoadPoint& point, bool resume_step
 {
   x_->assign(x);
   previous_->assign(x);
-  previous_increment_ = 0.0;
+  previous_increment_ = older_increment_ = 0.0;
   points_.clear();
   step_offset_ = point.step;
   if (resume_step_control) resumed_control_ = point.step_control;

@@ -12,6 +12,7 @@
 #include <optional>
 #include <variant>
 #include <string>
+#include <vector>
 
 namespace spatula::analysis {
 
@@ -19,14 +20,29 @@ using discretization::Master;
 using discretization::Vector;
 
 struct StepParameters {
+  // The trial state of a step: extrapolated from the last two converged states (secant, first order) or the last
+  // three (quadratic: Lagrange polynomial in the load, second order), each only after steps that converged.
+  enum class Predictor { secant, quadratic };
+  static const std::vector<std::string>& predictor_names();
+
   double initial = 1.0, minimum = 1e-3, maximum = 5.0;   // increments, in the load's unit (deg or nm)
   int easy_iterations = 4;    // grow the increment after a step that needed at most this many iterations
   double growth = 1.5;
   double cut = 0.5;
+  Predictor predictor = Predictor::quadratic;
 
   static void declare(Teuchos::ParameterList& list, const StepParameters& defaults);
   static StepParameters from(const Teuchos::ParameterList& list, const std::string& path);
 };
+
+// The predictor's weights of the current, previous and older converged states (trial = sum of weight x state) for
+// a step of `increment` after steps of `previous_increment` and `older_increment` (0: that state is not there).
+// Exact for a path linear (secant) or quadratic (quadratic) in the load; the current state alone without history.
+struct PredictorWeights {
+  double current = 1.0, previous = 0.0, older = 0.0;
+};
+PredictorWeights predictor_weights(StepParameters::Predictor predictor, double increment, double previous_increment,
+                                   double older_increment);
 
 // The nearest load ahead of the converged state where a step failed (Newton did not converge, or converged across
 // a snap). A load that fails again from a nearer state (or a load beyond it fails) is, in all likelihood, past a
@@ -182,7 +198,8 @@ private:
   // The steps of `advance`: the predictor, the energy a converged step released, passing a fold (the controlled
   // load's value beyond it, or why the path stops there), and taking a converged step.
   static const char* load_name(Master controlled);
-  void predict(Vector& trial, Master controlled, double load, double increment) const;
+  void predict(Vector& trial, Master controlled, double load, double increment,
+               StepParameters::Predictor predictor) const;
   double released_energy(const LoadPoint& point) const;
   std::variant<double, Failure> pass_fold(Master controlled, double unreached,
                                           const discretization::MasterControl& control, double direction,
@@ -203,8 +220,9 @@ private:
   const solvers::NewtonSolver& newton_;
   std::ostream* log_;
   bool tables_;
-  Teuchos::RCP<Vector> x_, previous_;
-  double previous_increment_ = 0.0;
+  Teuchos::RCP<Vector> x_, previous_, older_;   // the last three converged states of this advance
+  double previous_increment_ = 0.0;   // x_ - previous_ in the load (0: no predictor)
+  double older_increment_ = 0.0;      // previous_ - older_ in the load (0: no quadratic predictor)
   std::vector<LoadPoint> points_;
   int step_offset_ = 0;             // the step number of the path's first point (a restart's)
   std::optional<StepControllerState> resumed_control_;   // carried by a restart (LoadPoint::step_control)

@@ -16,7 +16,7 @@ enum class LineSearch { backtrack, polynomial, full_step };   // in the order of
 
 struct NewtonParameters {
   double relative_tolerance = 1e-9;
-  double absolute_tolerance = 1e-9;    // [nN]
+  double absolute_tolerance = 1e-6;    // [nN] (scaled norms: the RMS nodal force, 1e-6 nN = 1 fN)
   double update_tolerance = 1e-6;      // [nm] (and rad for the rotation)
   int maximum_iterations = 12;
   LineSearch line_search = LineSearch::backtrack;
@@ -25,6 +25,11 @@ struct NewtonParameters {
   int non_contracting_iterations = 2;      // give up after this many iterations with |f_k| >= contraction |f_k-1|
   bool give_up_only_after_failure = true;  // ... only in attempts made after a step failed (near a fold)
   double contraction = 0.5;
+  // Give up on any attempt (the first too) once the line search has cut the step to at most `short_step` in
+  // `short_steps` iterations in a row while |f| is still above 1e-3 of its first value: Newton's direction is no
+  // use there (past a fold, an indefinite tangent). 0: off.
+  int short_steps = 2;
+  double short_step = 0.125;
 
   static void declare(Teuchos::ParameterList& list);
   static NewtonParameters from(const Teuchos::ParameterList& list);

@@ -93,7 +93,7 @@ TEST(Parameters, AnEmptyListReadsBackAsTheTypedDefaults)
   expect_same_fields(Newton::from(newton_list), Newton{}, &Newton::relative_tolerance, &Newton::absolute_tolerance,
                      &Newton::update_tolerance, &Newton::maximum_iterations, &Newton::line_search, &Newton::scaled_norms,
                      &Newton::inexact, &Newton::non_contracting_iterations, &Newton::give_up_only_after_failure,
-                     &Newton::contraction);
+                     &Newton::contraction, &Newton::short_steps, &Newton::short_step);
   using Linear = solvers::LinearSolverParameters;
   const auto linear = Linear::from(linear_list);
   expect_same_fields(linear, Linear{}, &Linear::type, &Linear::tolerance, &Linear::maximum_iterations,
