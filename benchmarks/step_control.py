@@ -26,7 +26,11 @@ A fold predictor, run the same day and since removed, extrapolated 1 / |dx/dload
 A memory of the shift in the jumps' energy descents, run 2026-12-02 (fourth session) and since removed, started each
 search for a positive definite shifted tangent at the last shift that had sufficed instead of climbing from 1e-6:
 the descents' factorizations rose from 468 to 906 at 45 deg (the larger shifts damp the steps that escape a saddle),
-and with the looser tolerance one descent cycled without settling.)
+and with the looser tolerance one descent cycled without settling. An estimate of the negative eigenvalue by four
+inverse iterations on the indefinite factors (shift by twice the Rayleigh quotient when negative, which never exceeds
+twice the shift needed), run the same day and since removed: 452 -> 456 descent factorizations when only a settled
+quotient was used, 449 when any negative one was; the tangent's soft contact modes cluster near zero, so the
+quotient settles rarely and bounds the lowest eigenvalue loosely.)
 It records CPU seconds, tangents, Newton iterations, failed step attempts, and the change of P_max, Delta u_z and
 Delta Pi_ext against the base. Runs one after another (a quiet machine: CPU times are compared):
 
