@@ -676,8 +676,9 @@ def main():
     for level, scene in runs:   # complete runs of an earlier study not yet kept (and with --no-run, the kept ones)
         if complete(os.path.join(arguments.work, level), scene) and not complete(os.path.join(ARCHIVE, level), scene):
             archive(arguments.work, level, scene)
-    if arguments.no_run:
-        restore(arguments.work, runs)
+    if arguments.no_run:   # tabulate every kept run, at every level
+        restore(arguments.work, [(level, scene) for level in LEVELS if os.path.isdir(os.path.join(ARCHIVE, level))
+                                 for scene in sorted(os.listdir(os.path.join(ARCHIVE, level)))])
     failed = [] if arguments.no_run else run_all(runs, arguments.work, arguments.jobs)
     print(f'study {arguments.study}: {len(runs) - len(failed)} of {len(runs)} runs complete in '
           f'{time.time() - started:.0f} s' + (f'; failed: {", ".join(" ".join(f) for f in failed)}' if failed else ''),
