@@ -7,6 +7,7 @@
 
 #include <Teuchos_DefaultComm.hpp>
 #include <Teuchos_GlobalMPISession.hpp>
+#include <Tpetra_Core.hpp>
 
 #include <chrono>
 #include <fstream>
@@ -17,6 +18,7 @@ using namespace spatula;
 int main(int argc, char** argv)
 {
   Teuchos::GlobalMPISession session(&argc, &argv, nullptr);
+  Tpetra::ScopeGuard kokkos_scope(&argc, &argv);   // Kokkos starts here, not lazily at the first Tpetra::Map
   auto comm = Teuchos::DefaultComm<int>::getComm();
   if (argc < 6) {
     std::cerr << "usage: peel_curves <angle> <pull> <window start> <elements along> <output.csv>\n";

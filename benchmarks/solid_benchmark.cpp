@@ -15,6 +15,7 @@
 
 #include <Teuchos_DefaultComm.hpp>
 #include <Teuchos_GlobalMPISession.hpp>
+#include <Tpetra_Core.hpp>
 #include <Teuchos_TimeMonitor.hpp>
 
 #include <algorithm>
@@ -103,6 +104,7 @@ int factor_benchmark(discretization::DiscreteSystem& system, const solvers::Mump
 int main(int argc, char** argv)
 {
   Teuchos::GlobalMPISession session(&argc, &argv, nullptr);
+  Tpetra::ScopeGuard kokkos_scope(&argc, &argv);   // Kokkos starts here, not lazily at the first Tpetra::Map
   auto comm = Teuchos::DefaultComm<int>::getComm();
   if (argc < 3) {
     std::cerr << "usage: solid_benchmark <coarse|medium|fine> <mumps|gmres-ilu> [repetitions] [ordering=NAME] "

@@ -20,6 +20,7 @@
 
 #include <Teuchos_DefaultComm.hpp>
 #include <Teuchos_GlobalMPISession.hpp>
+#include <Tpetra_Core.hpp>
 #include <Teuchos_StandardCatchMacros.hpp>
 #include <Teuchos_TimeMonitor.hpp>
 
@@ -210,6 +211,7 @@ int main(int argc, char** argv)
 {
   using namespace spatula;
   Teuchos::GlobalMPISession mpi_session(&argc, &argv, nullptr);
+  Tpetra::ScopeGuard kokkos_scope(&argc, &argv);   // Kokkos starts here, not lazily at the first Tpetra::Map
   const auto comm = Teuchos::DefaultComm<int>::getComm();
   const bool root = comm->getRank() == 0;
   std::ostream& out = std::cout;

@@ -39,7 +39,9 @@ public:
 
 namespace detail {
 
-// One face per work item; sums[0] energy, sums[1] integrated faces, sums[2] active points.
+// One face per work item; sums[0] energy, sums[1] integrated faces, sums[2] active points. An array sum: Kokkos'
+// own init (zeros) and join (+=) serve, so the kernel declares neither (Kokkos 4 rejects the volatile join that
+// Kokkos 3 asked for).
 template <class Surface, class Integrand>
 struct ContactKernel {
   using value_type = double[];
@@ -49,15 +51,6 @@ struct ContactKernel {
   Integrand integrand;
   int order = 4;
   bool skip_distant = true;
-
-  KOKKOS_INLINE_FUNCTION void init(value_type sums) const
-  {
-    for (unsigned i = 0; i < value_count; ++i) sums[i] = 0.0;
-  }
-  KOKKOS_INLINE_FUNCTION void join(volatile value_type sums, const volatile value_type other) const
-  {
-    for (unsigned i = 0; i < value_count; ++i) sums[i] += other[i];
-  }
 
   KOKKOS_INLINE_FUNCTION void operator()(const int face, value_type sums) const
   {

@@ -46,6 +46,7 @@ StripPeelResult peel_strip(const StripPeelParameters& p, Teuchos::RCP<const Teuc
   solvers::NewtonParameters newton_parameters;
   newton_parameters.maximum_iterations = 40;
   newton_parameters.non_contracting_iterations = 0;   // the slow iterations at the peel front are needed
+  newton_parameters.short_steps = 0;   // ... and so are the damped ones: the line search cuts steps there too
   solvers::NewtonSolver newton(model, newton_parameters, linear);
   analysis::LoadPath path(*model, newton, nullptr, false);
   analysis::StepParameters steps;
