@@ -17,8 +17,10 @@
 #include <Thyra_TpetraThyraWrappers.hpp>
 
 #include <chrono>
+#include <functional>
 #include <iomanip>
 #include <ostream>
+#include <string>
 
 namespace spatula::solvers {
 
@@ -157,52 +159,19 @@ private:
   std::chrono::steady_clock::time_point start_;
 };
 
-// Gives up on a Newton attempt that is going nowhere: `limit` iterations in a row each left |f| above `contraction`
-// times its value before, while |f| was still above `far` times the residual the attempt started from. The second
-// condition spares the slow last iterations of a converging attempt (a nearly singular tangent at a peel front
-// converges linearly, many orders below where it began); near a fold a hopeless attempt stays near its start.
-class HopelessAttempt : public NOX::StatusTest::Generic {
+// Gives up on a Newton attempt once `limit` iterations in a row met its rule while |f| was still above `far` times
+// the residual the attempt started from. Two rules: hopeless (|f| left above `contraction` times its value before)
+// and short steps (the line search cut the step to at most `short step`: Newton's direction does not lower |f|).
+// The far condition spares the slow last iterations of a converging attempt (a nearly singular tangent at a peel
+// front converges linearly, many orders below where it began); near a fold a hopeless attempt stays near its start.
+class GiveUp : public NOX::StatusTest::Generic {
 public:
-  HopelessAttempt(int limit, double contraction, double far) : limit_(limit), contraction_(contraction), far_(far) {}
-
-  NOX::StatusTest::StatusType checkStatus(const NOX::Solver::Generic& solver, NOX::StatusTest::CheckType) override
+  // Whether an iteration counts, from |f| now, |f| before and the line-search step (1 without a line search).
+  using Rule = std::function<bool(double now, double before, double step)>;
+  GiveUp(std::string description, int limit, double far, Rule rule)
+      : description_(std::move(description)), limit_(limit), far_(far), rule_(std::move(rule))
   {
-    const int iteration = solver.getNumIterations();
-    if (iteration == 0) {   // a new attempt
-      start_ = solver.getSolutionGroup().getNormF();
-      count_ = 0;
-      last_ = 0;
-      status_ = NOX::StatusTest::Unconverged;
-      return status_;
-    }
-    if (iteration == last_) return status_;   // asked twice in one iteration
-    last_ = iteration;
-    const double now = solver.getSolutionGroup().getNormF(), before = solver.getPreviousSolutionGroup().getNormF();
-    const bool slow = now >= contraction_ * before && now >= far_ * start_;
-    count_ = slow ? count_ + 1 : 0;
-    status_ = count_ >= limit_ ? NOX::StatusTest::Failed : NOX::StatusTest::Unconverged;
-    return status_;
   }
-  NOX::StatusTest::StatusType getStatus() const override { return status_; }
-  std::ostream& print(std::ostream& stream, int indent) const override
-  {
-    return stream << std::string(indent, ' ') << status_ << " hopeless attempt: " << count_ << " of " << limit_
-                  << " iterations with |f| >= " << contraction_ << " |f| before\n";
-  }
-
-private:
-  int limit_;
-  double contraction_, far_;
-  double start_ = 0.0;
-  int count_ = 0, last_ = 0;
-  NOX::StatusTest::StatusType status_ = NOX::StatusTest::Unconverged;
-};
-
-// Gives up on an attempt whose line search has cut the step to at most `short` in `limit` iterations in a row
-// while |f| was still above `far` times its first value: Newton's direction does not lower |f| there.
-class ShortSteps : public NOX::StatusTest::Generic {
-public:
-  ShortSteps(int limit, double short_step, double far) : limit_(limit), short_(short_step), far_(far) {}
 
   NOX::StatusTest::StatusType checkStatus(const NOX::Solver::Generic& solver, NOX::StatusTest::CheckType) override
   {
@@ -215,23 +184,25 @@ public:
     }
     if (iteration == last_) return status_;   // asked twice in one iteration
     last_ = iteration;
+    const double now = solver.getSolutionGroup().getNormF(), before = solver.getPreviousSolutionGroup().getNormF();
     const auto* line_search = dynamic_cast<const NOX::Solver::LineSearchBased*>(&solver);
-    const bool cut = line_search && line_search->getStepSize() <= short_ &&
-                     solver.getSolutionGroup().getNormF() >= far_ * start_;
-    count_ = cut ? count_ + 1 : 0;
+    const double step = line_search ? line_search->getStepSize() : 1.0;
+    count_ = now >= far_ * start_ && rule_(now, before, step) ? count_ + 1 : 0;
     status_ = count_ >= limit_ ? NOX::StatusTest::Failed : NOX::StatusTest::Unconverged;
     return status_;
   }
   NOX::StatusTest::StatusType getStatus() const override { return status_; }
   std::ostream& print(std::ostream& stream, int indent) const override
   {
-    return stream << std::string(indent, ' ') << status_ << " short steps: " << count_ << " of " << limit_
-                  << " iterations with a line-search step <= " << short_ << "\n";
+    return stream << std::string(indent, ' ') << status_ << " " << description_ << ": " << count_ << " of " << limit_
+                  << " iterations in a row\n";
   }
 
 private:
+  std::string description_;
   int limit_;
-  double short_, far_;
+  double far_;
+  Rule rule_;
   double start_ = 0.0;
   int count_ = 0, last_ = 0;
   NOX::StatusTest::StatusType status_ = NOX::StatusTest::Unconverged;
@@ -271,11 +242,17 @@ NewtonResult NewtonSolver::solve(discretization::Vector& x, std::ostream* table,
   const bool give_up = parameters_.non_contracting_iterations > 0 &&
                        (after_failure || !parameters_.give_up_only_after_failure);
   if (give_up)   // far from a solution (past a fold): give up early
-    tests->addStatusTest(Teuchos::rcp(new HopelessAttempt(parameters_.non_contracting_iterations,
-                                                          parameters_.contraction, hopeless_above)));
-  Teuchos::RCP<ShortSteps> short_steps;
+    tests->addStatusTest(Teuchos::rcp(new GiveUp(
+        "hopeless attempt (|f| not shrinking)", parameters_.non_contracting_iterations, hopeless_above,
+        [contraction = parameters_.contraction](double now, double before, double) {
+          return now >= contraction * before;
+        })));
+  Teuchos::RCP<GiveUp> short_steps;
   if (parameters_.short_steps > 0) {
-    short_steps = Teuchos::rcp(new ShortSteps(parameters_.short_steps, parameters_.short_step, hopeless_above));
+    short_steps = Teuchos::rcp(new GiveUp("short line-search steps", parameters_.short_steps, hopeless_above,
+                                          [short_step = parameters_.short_step](double, double, double step) {
+                                            return step <= short_step;
+                                          }));
     tests->addStatusTest(short_steps);
   }
 
@@ -320,8 +297,8 @@ NewtonResult NewtonSolver::solve(discretization::Vector& x, std::ostream* table,
                            solver->getNumIterations() < parameters_.maximum_iterations;
     result.failure = "no convergence after " + std::to_string(solver->getNumIterations()) + " iterations (" +
                      (stagnated ? "|f| stopped shrinking, " : "") +
-                     (cut_short ? "the line search cut the steps short, " : "") + "|f| = " + std::to_string(final_group.getNormF()) +
-                     " nN" +
+                     (cut_short ? "the line search cut the steps short, " : "") +
+                     "|f| = " + std::to_string(final_group.getNormF()) + " nN" +
                      (model_->last_evaluation().admissible ? "" : ", an element inverted") + ")";
     return result;
   }
