@@ -21,11 +21,8 @@ wait_for_step() {   # log file, step number: waits until the log shows that conv
   return 1
 }
 # A resumed run starts its predictor afresh (from the last converged state alone), so it meets the uninterrupted path
-# to the Newton tolerance: the scenes here use an absolute tolerance of 1e-9, where 1e-6 nm-scale agreement is a
-# test of the resume and not of the tolerance (with the default 1e-6, M_y differs by about 1e-6 of itself).
-tight_scene() {
-  rotation_scene "$@" | sed 's#<ParameterList name="Output">#<ParameterList name="Nonlinear Solver"><Parameter name="absolute tolerance" type="double" value="1e-9"/></ParameterList>\n  <ParameterList name="Output">#'
-}
+# to the Newton tolerance: the scenes here use an absolute tolerance of 1e-9 (tight_newton).
+tight_scene() { rotation_scene "$@" | tight_newton; }
 final_moment() { tail -n 1 "$1/curve.csv" | cut -d, -f3,5; }   # theta_y, M_y
 
 tight_scene reference 15 > reference.xml
