@@ -16,6 +16,8 @@ after 'maximum iterations' = 12; NOX's scaled norms):
                           'absolute tolerance' 1e-9)
   quadratic               session-3 with the quadratic predictor (Rotation/Lift Steps 'predictor')
   quadratic-short-steps   and 'short steps' 2 x 0.125 (a line search cut short twice ends any attempt)
+  session-4               the defaults before 'predict after a failure' (a retry after a failed attempt started
+                          from the last converged state with only the load moved)
   new                     today's defaults (as the parameter list declares them; with the three rules, the
                           'absolute tolerance' 1e-6)
 (A 'resume' rule, run 2026-12-02 and since removed, restarted the increments at half the failed one once the path
@@ -77,6 +79,7 @@ CONFIGURATIONS = {   # each as the rows of docs/step-control.csv were run ('Line
     'session-3': SESSION_3,
     'quadratic': {'short steps': 0, 'absolute tolerance': 1e-9},
     'quadratic-short-steps': {'absolute tolerance': 1e-9},
+    'session-4': {'Steps': {'predict after a failure': False}},
     'new': {},
 }
 QUANTITIES = ('P_max_nN', 'delta_u_z_nm', 'delta_Pi_ext_1e-18J')

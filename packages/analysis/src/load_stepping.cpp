@@ -103,6 +103,9 @@ void StepParameters::declare(Teuchos::ParameterList& list, const StepParameters&
   parameters::declare_string(list, "predictor", parameters::name_of(d.predictor, predictor_names()),
                              "the trial state of a step: extrapolated from the last two converged states (secant) or "
                              "the last three (quadratic in the load)", predictor_names());
+  parameters::declare_bool(list, "predict after a failure", d.predict_after_failure,
+                           "a retry with a shorter increment after a failed attempt starts from the predictor "
+                           "(true) or from the last converged state with only the load moved (false)");
 }
 
 StepParameters StepParameters::from(const Teuchos::ParameterList& list, const std::string& path)
@@ -115,6 +118,7 @@ StepParameters StepParameters::from(const Teuchos::ParameterList& list, const st
   p.growth = list.get<double>("growth");
   p.cut = list.get<double>("cut");
   p.predictor = parameters::choice<Predictor>(list, "predictor", predictor_names());
+  p.predict_after_failure = list.get<bool>("predict after a failure");
   if (p.minimum > p.initial)
     parameters::fail(parameters::key_path(path, "minimum"), p.minimum, "must not exceed 'initial' = " + std::to_string(p.initial));
   if (p.maximum < p.initial)
@@ -208,8 +212,10 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
         value = std::get<double>(beyond);
         failed.forget();
         increment = steps.initial * unit;
+        previous_increment_ = older_increment_ = 0.0;   // a new branch: no history to extrapolate
+      } else if (!steps.predict_after_failure) {
+        previous_increment_ = older_increment_ = 0.0;
       }
-      previous_increment_ = older_increment_ = 0.0;   // no predictor after a failure
       continue;
     }
     const int iterations = result.iterations.empty() ? 0 : result.iterations.back().iteration;
@@ -225,7 +231,7 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
                         << " nN nm, full spatula): a snap within the step; cutting the increment\n";
         failed.failed(load);
         increment *= steps.cut;
-        previous_increment_ = older_increment_ = 0.0;
+        if (!steps.predict_after_failure) previous_increment_ = older_increment_ = 0.0;
         continue;
       }
       if (past_folds_ == PastFolds::stop) {

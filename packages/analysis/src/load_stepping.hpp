@@ -21,7 +21,8 @@ using discretization::Vector;
 
 struct StepParameters {
   // The trial state of a step: extrapolated from the last two converged states (secant, first order) or the last
-  // three (quadratic: Lagrange polynomial in the load, second order), each only after steps that converged.
+  // three (quadratic: Lagrange polynomial in the load, second order), each from converged states only; a retry
+  // after a failed attempt extrapolates them to its shorter increment unless predict_after_failure is false.
   enum class Predictor { secant, quadratic };
   static const std::vector<std::string>& predictor_names();
 
@@ -30,6 +31,7 @@ struct StepParameters {
   double growth = 1.5;
   double cut = 0.5;
   Predictor predictor = Predictor::quadratic;
+  bool predict_after_failure = true;
 
   static void declare(Teuchos::ParameterList& list, const StepParameters& defaults);
   static StepParameters from(const Teuchos::ParameterList& list, const std::string& path);
