@@ -7,6 +7,9 @@ LEVELS = tuple(ELEMENT_SIZE)   # coarse to fine
 # Where only two levels ran: the order of convergence assumed (the error benchmark observed 2.2 for P_max from k = 1,
 # 2, 4, docs/error-vs-time.md).
 ASSUMED_ORDER = 2.0
+# Levels whose values differ by more than this factor did not follow the same kind of path (an instability moved
+# between them, the coarser run detached early): no extrapolation through them is meaningful.
+PATH_CHANGE = 2.0
 
 
 def observed_order(values, sizes):
@@ -45,4 +48,8 @@ def richardson(by_level):
     correction = (finest - next_finest) / (ratio ** order - 1.0)
     if abs(correction) > 0.5 * abs(finest):
         remark += '; not reliable (the estimate exceeds half the value)'
+    magnitudes = [abs(v) for v in values]
+    if min(magnitudes) > 0.0 and max(magnitudes) > PATH_CHANGE * min(magnitudes):
+        remark += (f'; **not reliable**: the levels differ by more than a factor {PATH_CHANGE:g} (the coarser run '
+                   'followed another path)')
     return finest, abs(correction), finest + correction, remark

@@ -492,7 +492,8 @@ def write_tables(work, scenes, level):
 def error_bars(results):
     """Markdown: each Table 6-8 quantity (and Table 4's energies at 30, 60, 90 deg) on every level run, as
     `value ± estimate` on the finest with the extrapolated value (Richardson), for the scenes run on two levels or
-    more. A cell whose runs ended differently on the levels (detached on one, not on another) says so."""
+    more. A cell whose runs ended differently on the levels (detached on one, not on another), or whose levels differ
+    by more than a factor PATH_CHANGE (scripts/convergence.py: another path on the coarser mesh), says so."""
     lines = ['### Discretization error: every quantity run on two mesh levels or more\n',
              f'Richardson extrapolation in the in-plane element size (coarse 1, medium 1/4, fine 1/8): with three levels '
              f'the observed order, with two the assumed order {ASSUMED_ORDER:g}. Values are those of the tables above '

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The study tables' error bars (scripts/convergence.py) on manufactured values f = f* + C h^p over the levels' in-plane
 element sizes (coarse 1, medium 1/4, fine 1/8): three levels recover p and f* exactly, two levels with the assumed
-order 2 recover f* when p = 2, and alternating changes are reported as outside the asymptotic range."""
+order 2 recover f* when p = 2, alternating changes are reported as outside the asymptotic range, and levels more than
+a factor 2 apart as another path."""
 import os
 import sys
 
@@ -33,5 +34,9 @@ finest, estimate, extrapolated, remark = richardson({'coarse': 11.0, 'medium': 9
 check(extrapolated is None and 'not in the asymptotic range' in remark and estimate == 1.0, f'alternating: {remark}')
 finest, estimate, extrapolated, remark = richardson({'coarse': 100.0, 'medium': 10.0})
 check('not reliable' in remark, f'a change larger than the value: {remark}')
+finest, estimate, extrapolated, remark = richardson({'coarse': 9.0, 'medium': 94.0})
+check('another path' in remark, f'levels a factor 10 apart: {remark}')
+finest, estimate, extrapolated, remark = richardson({'coarse': 11.0, 'medium': 6.7})
+check('not reliable' not in remark, f'levels a factor 1.6 apart: {remark}')
 print('richardson: manufactured values recovered' if failures == 0 else f'{failures} failures')
 sys.exit(1 if failures else 0)
