@@ -6,8 +6,8 @@ over mesh level x Q1C1/Q1C2 x contact quadrature x linear solver x MPI ranks x s
 
 Measured per run: P_max, Delta u_z and Delta Pi_ext of the pull-off, M_y at theta_y = 15, 20, 25 deg (the smooth part
 of the moment curve; since 2026-12-02 each run's rotation lands a step on these angles, so that M_y there is not a
-chord across a step of up to 2 deg: the check row moved by at most 0.03 %), the wall time (rotation, lift, total; one run at a time) and the CPU time of the run's
-processes (all ranks). Time is plotted as CPU seconds: that stays meaningful when the machine is shared with other
+chord across a step of up to 2 deg: the check row moved by at most 0.03 %), the wall time (rotation, lift, total;
+one run at a time) and the CPU time of the run's processes (all ranks). Time is plotted as CPU seconds: that stays meaningful when the machine is shared with other
 runs, which wall time does not. Reference: Richardson extrapolation over the in-plane refinement k = 1, 2, 4 (coarse,
 coarse with refinement factor 2, medium; Q1C2, 6x6 points), with the observed order; the errors of every run are
 relative to it. `--medium-from DIR` takes the k = 4 point from a study's medium runs (DIR/peel-rotation and

@@ -24,19 +24,20 @@ rotation_scene short 36 > short.xml
 rotation_scene predicted 36 > predicted.xml
 rotation_scene unpredicted 36 > unpredicted.xml
 /usr/bin/python3 - <<'PY'
-def nonlinear(name, entries):
+def add_list(name, list_name, entries):
     text = open(f'{name}.xml').read()
-    open(f'{name}.xml', 'w').write(text.replace('<ParameterList name="Output">', '<ParameterList name="Nonlinear Solver">'
+    open(f'{name}.xml', 'w').write(text.replace('<ParameterList name="Output">', f'<ParameterList name="{list_name}">'
         + entries + '</ParameterList>\n  <ParameterList name="Output">'))
+nonlinear = lambda name, entries: add_list(name, 'Nonlinear Solver', entries)
 no_short_steps = '<Parameter name="short steps" type="int" value="0"/>'
 nonlinear('old', '<Parameter name="non-contracting iterations" type="int" value="0"/>' + no_short_steps)
 nonlinear('new', no_short_steps)
 nonlinear('always', '<Parameter name="give up" type="string" value="always"/>' + no_short_steps)
 for name, predicted in (('predicted', 'true'), ('unpredicted', 'false')):
-    text = open(f'{name}.xml').read().replace('<ParameterList name="Rotation Steps">', '<ParameterList name="Rotation '
-        f'Steps"><Parameter name="predict after a failure" type="bool" value="{predicted}"/>')
-    open(f'{name}.xml', 'w').write(text.replace('<ParameterList name="Output">', '<ParameterList name="Linear Solver">'
-        '<Parameter name="refactor" type="string" value="lag"/></ParameterList>\n  <ParameterList name="Output">'))
+    text = open(f'{name}.xml').read()
+    open(f'{name}.xml', 'w').write(text.replace('<ParameterList name="Rotation Steps">', '<ParameterList name="Rotation '
+        f'Steps"><Parameter name="predict after a failure" type="bool" value="{predicted}"/>'))
+    add_list(name, 'Linear Solver', '<Parameter name="refactor" type="string" value="lag"/>')
 PY
 "$app" new.xml > new.log
 "$app" old.xml > old.log

@@ -211,11 +211,9 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
         if (auto* failure = std::get_if<Failure>(&beyond)) return *failure;
         value = std::get<double>(beyond);
         failed.forget();
-        increment = steps.initial * unit;
-        previous_increment_ = older_increment_ = 0.0;   // a new branch: no history to extrapolate
-      } else if (!steps.predict_after_failure) {
-        previous_increment_ = older_increment_ = 0.0;
+        increment = steps.initial * unit;   // on a new branch: accept() has started the predictor afresh
       }
+      if (!steps.predict_after_failure) previous_increment_ = older_increment_ = 0.0;
       continue;
     }
     const int iterations = result.iterations.empty() ? 0 : result.iterations.back().iteration;
