@@ -48,7 +48,8 @@ ENVIRONMENT = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
 MPI = ['mpiexec', '--allow-run-as-root', '-np', '2']
 OLD_SOLID = ['refactor=lag', 'lag=4', 'low-rank=0']
 OLD_SCENE = {'Linear Solver': {'refactor': 'lag', 'lag': 4, 'MUMPS': {'low rank tolerance': 0.0}},
-             'Nonlinear Solver': {'non-contracting iterations': 0, 'short steps': 0, 'absolute tolerance': 1e-9},
+             'Nonlinear Solver': {'non-contracting iterations': 0, 'short steps': 0, 'absolute tolerance': 1e-9,
+                                  'line search': 'backtrack'},
              'Steps': {'predictor': 'secant'}}
 QUANTITIES = ('P_max_nN', 'delta_u_z_nm', 'delta_Pi_ext_1e-18J')
 

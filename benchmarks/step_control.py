@@ -18,8 +18,11 @@ after 'maximum iterations' = 12; NOX's scaled norms):
   quadratic-short-steps   and 'short steps' 2 x 0.125 (a line search cut short twice ends any attempt)
   session-4               the defaults before 'predict after a failure' (a retry after a failed attempt started
                           from the last converged state with only the load moved)
-  new                     today's defaults (as the parameter list declares them; with the three rules, the
-                          'absolute tolerance' 1e-6)
+  session-5               the defaults before the energy line search ('line search' = backtrack, 'absolute
+                          tolerance' 1e-6); every configuration above also runs with these two
+  energy-line-search      session-5 with 'line search' = energy
+  new                     today's defaults (as the parameter list declares them: the energy line search and the
+                          'absolute tolerance' 1e-5)
 (A 'resume' rule, run 2026-12-02 and since removed, restarted the increments at half the failed one once the path
 had passed a failed load: 1,256 -> 1,231 tangents at 45 deg, 1,185 -> 1,215 at 60 deg, CPU 0.98 / 1.07: no gain.
 A fold predictor, run the same day and since removed, extrapolated 1 / |dx/dload|^2 of the last two steps to zero
@@ -63,8 +66,10 @@ BEFORE = {**SESSION_3, 'non-contracting iterations': 0, 'forcing term': 'constan
 ALWAYS = {'give up': 'always'}   # the rule in every attempt, as it was before 'give up' existed
 GIVE_UP = {**SESSION_3, 'non-contracting iterations': 2, 'contraction': 0.5, **ALWAYS, **LAG}
 AFTER_FAILURE = {**SESSION_3, 'non-contracting iterations': 2, 'contraction': 0.5, 'give up': 'after a failed step'}
-CONFIGURATIONS = {   # each as the rows of docs/step-control.csv were run ('Linear Solver': that list's entries,
-                     # 'Steps': entries of both step lists)
+# The defaults before the energy line search and the absolute tolerance 1e-5 (2026-12-02, sixth session).
+SESSION_5 = {'line search': 'backtrack', 'absolute tolerance': 1e-6}
+EARLIER = {   # each as the rows of docs/step-control.csv were run ('Linear Solver': that list's entries,
+              # 'Steps': entries of both step lists), with SESSION_5 below them
     'base': BEFORE,
     'non-contracting-3': {**BEFORE, 'non-contracting iterations': 3, 'contraction': 1.0, **ALWAYS},
     'non-contracting-2': {**BEFORE, 'non-contracting iterations': 2, 'contraction': 1.0, **ALWAYS},
@@ -80,8 +85,11 @@ CONFIGURATIONS = {   # each as the rows of docs/step-control.csv were run ('Line
     'quadratic': {'short steps': 0, 'absolute tolerance': 1e-9},
     'quadratic-short-steps': {'absolute tolerance': 1e-9},
     'session-4': {'Steps': {'predict after a failure': False}},
-    'new': {},
+    'session-5': {},
 }
+CONFIGURATIONS = {**{name: {**SESSION_5, **entries} for name, entries in EARLIER.items()},
+                  'energy-line-search': {'absolute tolerance': 1e-6},
+                  'new': {}}
 QUANTITIES = ('P_max_nN', 'delta_u_z_nm', 'delta_Pi_ext_1e-18J')
 
 

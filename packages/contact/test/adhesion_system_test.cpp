@@ -1,6 +1,7 @@
 // Adhesion in the assembled system: the undeformed spatula stores -A_c w_adh (Q1C1 and Q1C2), a stiff block
 // lifted off the substrate feels area x traction with its maximum at r_min, the global tangent with contact and
-// enrichment against finite differences, 1 vs 2 ranks, and the law registry open to new laws.
+// enrichment against finite differences, the residual as the energy's gradient, 1 vs 2 ranks, and the law registry
+// open to new laws.
 #include "contact/adhesion.hpp"
 #include "mesh/box_mesh.hpp"
 #include "contact/contact_registry.hpp"
@@ -147,6 +148,41 @@ TEST(Adhesion, GlobalTangentWithContactAndEnrichmentIsTheResidualDerivative)
     fp->update(-0.5 / h, *fm, 0.5 / h);
     fp->update(-1.0, *jv, 1.0);
     EXPECT_LT(fp->norm2() / jv->norm2(), 1e-6) << law;
+  }
+}
+
+// The residual is the gradient of the energy Pi_int + Pi_c, which the energy line search of the Newton solver
+// (solvers/energy_line_search.hpp) and the jumps' descents rely on: its slope along a direction d against central
+// differences of the energy, for both laws on a partly lifted pad (gaps across the Lennard-Jones range).
+TEST(Adhesion, TheResidualIsTheEnergyGradient)
+{
+  Spatula spatula;
+  auto comm = Teuchos::DefaultComm<int>::getComm();
+  for (const std::string law : {"frictionless", "stiction"}) {
+    auto system = spatula.system(settings(discretization::Enrichment::q1c2, law), comm);
+    system->set_control({{true, false, true}});   // rotation prescribed, lift free, slide held
+    auto x = system->create_vector();
+    std::vector<double> u(3 * spatula.mesh.node_count());
+    for (std::int64_t n = 0; n < spatula.mesh.node_count(); ++n) {
+      const auto& X = spatula.mesh.coordinates[n];
+      u[3 * n + 0] = 0.05 * std::sin(0.02 * X[0]);
+      u[3 * n + 2] = 0.3 * std::max(0.0, std::sin(0.01 * X[0] + 0.02 * X[1])) + 0.02;
+    }
+    system->set_displacements(*x, u);
+    system->set_master(*x, Master::rotation, 0.01);
+    auto f = system->create_vector(), direction = system->create_vector();
+    ASSERT_TRUE(system->evaluate(*x, f.get(), false).admissible);
+    direction->randomize(-1.0, 1.0);
+    direction->elementWiseMultiply(1.0, *f, *direction, 0.0);   // zero on the prescribed rows, where f is 0
+    const double h = 1e-5 / direction->normInf();   // displacements of 1e-5 nm at most
+    auto shifted = system->create_vector();
+    const auto energy = [&](double step) {
+      shifted->update(1.0, *x, step, *direction, 0.0);
+      const auto evaluation = system->evaluate(*shifted, nullptr, false);
+      return evaluation.internal_energy + evaluation.contact_energy;
+    };
+    const double slope = f->dot(*direction), difference = (energy(h) - energy(-h)) / (2.0 * h);
+    EXPECT_NEAR(difference, slope, 1e-5 * std::abs(slope)) << law;
   }
 }
 

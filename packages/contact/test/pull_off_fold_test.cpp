@@ -109,6 +109,11 @@ TEST(PullOffFold, StepControllerStopsAtTheAnalyticFoldAndTheJumpReleasesItsEnerg
   solvers::NewtonSolver newton(model, solvers::NewtonParameters{}, linear);
   analysis::LoadPath path(*model, newton, nullptr, false);
   path.set_past_folds(analysis::LoadPath::PastFolds::jump);
+  // The app's step balance check (1e-4 of the contact energy A w_adh): the energy line search can carry a Newton
+  // attempt just past the fold down to the far branch, which the check catches and cuts back.
+  analysis::JumpParameters jump_parameters;
+  jump_parameters.step_balance_tolerance = 1e-4 * side * side * adhesion.lennard_jones.work_of_adhesion();
+  path.set_jump_parameters(jump_parameters);
   analysis::StepParameters steps;
   steps.initial = 0.2;
   steps.maximum = 0.5;

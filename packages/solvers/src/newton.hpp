@@ -2,7 +2,7 @@
 // Newton's method with a line search (NOX, line-search based solver over the Thyra model), converging when
 //   (|f|_2 <= absolute tolerance  or  |f|_2 <= relative tolerance * |f_0|_2)  and  |dx|_inf <= update tolerance,
 // and a convergence table per step: iteration, residual norm, update norm, line-search step, negative pivots of
-// the tangent (MUMPS LDL^T inertia), seconds.
+// the tangent (MUMPS LDL^T inertia), seconds, slope ratio (below).
 #include "solvers/linear_solver.hpp"
 #include "solvers/spatula_model.hpp"
 
@@ -12,14 +12,14 @@
 
 namespace spatula::solvers {
 
-enum class LineSearch { backtrack, polynomial, full_step };   // in the order of line_search_names()
+enum class LineSearch { backtrack, polynomial, full_step, energy };   // in the order of line_search_names()
 
 struct NewtonParameters {
   double relative_tolerance = 1e-9;
-  double absolute_tolerance = 1e-6;    // [nN] (scaled norms: the RMS nodal force, 1e-6 nN = 1 fN)
+  double absolute_tolerance = 1e-5;    // [nN] (scaled norms: the RMS nodal force, 1e-5 nN = 10 fN)
   double update_tolerance = 1e-6;      // [nm] (and rad for the rotation)
   int maximum_iterations = 12;
-  LineSearch line_search = LineSearch::backtrack;
+  LineSearch line_search = LineSearch::energy;
   bool scaled_norms = true;                // tolerances on |f|_2 / sqrt(n) and |dx|_inf / n (NOX's default)
   bool inexact = true;                     // Eisenstat-Walker forcing terms for the linear solves
   int non_contracting_iterations = 2;      // give up after this many iterations with |f_k| >= contraction |f_k-1|
@@ -44,6 +44,9 @@ struct NewtonIteration {
   double step = 1.0;
   int negative_pivots = -1;
   double seconds = 0.0;
+  // f(x_k) . dx / f(x_k-1) . dx: the energy's slope along the step at its end over its slope at its start (0: the
+  // step ended at the minimum along its line; > 0: past it; < 0 and near 1: far short of it).
+  double slope_ratio = 0.0;
 };
 
 struct NewtonResult {
