@@ -13,7 +13,8 @@ iterations' = 0; 'after' is today's defaults):
                           recorded 39.3 s) is recorded as fine-newton-iteration-fresh-factors.
   medium-pull-off-45      the medium frictionless Q1C2 pull-off at 45 deg (rotation to 45 deg with zero net force,
                           then 600 nm of lift, to detachment): CPU seconds, tangents, and the change of P_max,
-                          Delta u_z and Delta Pi_ext.
+                          Delta u_z and Delta Pi_ext. Its after scene takes the studies' step settings (AFTER_SCENE
+                          below: lift steps up to 10 nm, 16 iterations per attempt).
   peer-medium-iteration   per Newton iteration on the peer's comparison scene (medium, Q1C1, 20 nm lift from
                           theta_s): before = the FEniCSx peer of ../shared/peers (MUMPS Cholesky every iteration),
                           after = ours with today's defaults; also the whole scene's Newton time of each. Needs
@@ -51,6 +52,10 @@ OLD_SCENE = {'Linear Solver': {'refactor': 'lag', 'lag': 4, 'MUMPS': {'low rank 
              'Nonlinear Solver': {'non-contracting iterations': 0, 'short steps': 0, 'absolute tolerance': 1e-9,
                                   'line search': 'backtrack'},
              'Steps': {'predictor': 'secant'}}
+# The after scene's step settings (those of the pull-off studies since 2026-12-02, sixth session): lift steps up to
+# 10 nm, grown after steps of at most 10 Newton iterations, 16 iterations per attempt. The energy line search and the
+# looser tolerance are what make such steps pay (at the medium peel front 10 nm steps take 11 iterations).
+AFTER_SCENE = {'Nonlinear Solver': {'maximum iterations': 16}, 'Steps': {'easy iterations': 10}, 'lift maximum': 10.0}
 QUANTITIES = ('P_max_nN', 'delta_u_z_nm', 'delta_Pi_ext_1e-18J')
 
 
@@ -83,10 +88,11 @@ def fine_newton_iteration():
 def pull_off(work, label, options):
     directory = f'medium-45-{label}'
     xml = os.path.join(work, directory + '.xml')
-    options = {k: dict(v) for k, v in options.items()}
+    options = {k: dict(v) if isinstance(v, dict) else v for k, v in options.items()}
     open(xml, 'w').write(benchmark_scene(directory, mesh='medium', theta_y=45.0,
                                          linear_solver=options.get('Linear Solver'),
-                                         newton=options.get('Nonlinear Solver'), steps=options.get('Steps')))
+                                         newton=options.get('Nonlinear Solver'), steps=options.get('Steps'),
+                                         lift_maximum=options.get('lift maximum', 5.0)))
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     started = time.time()
     with open(os.path.join(work, directory + '.log'), 'w') as log:
@@ -108,7 +114,7 @@ def pull_off(work, label, options):
 
 def medium_pull_off_45(work):
     before = pull_off(work, 'before', OLD_SCENE)
-    after = pull_off(work, 'after', {})
+    after = pull_off(work, 'after', AFTER_SCENE)
     change = max(abs(after[q] / before[q] - 1) * 100 for q in QUANTITIES)
     counts = '{tangents} tangents, {failed} failed attempts, {jumps} jumps, P_max {P_max_nN:.4f} nN, Delta u_z ' \
              '{delta_u_z_nm:.2f} nm, wall {wall_s:.0f} s'
