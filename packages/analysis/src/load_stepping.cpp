@@ -434,7 +434,7 @@ double LoadPath::descent_line_search(const Vector& x, const Vector& direction, d
   for (int trial_count = 0; trial_count < 30; ++trial_count) {
     trial.update(1.0, x, step, direction, 0.0);
     const auto evaluation = system.evaluate(trial, nullptr, false);
-    const double value_at = evaluation.internal_energy + evaluation.contact_energy;
+    const double value_at = evaluation.energy();
     const bool sufficient = evaluation.admissible && value_at <= energy + 1e-4 * step * slope;
     if (sufficient && value_at < best_energy) {
       best_energy = value_at;
@@ -462,7 +462,7 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
     system.set_damping(0.0, Teuchos::null);
     if (!evaluation.admissible) return std::string("an element inverted during the energy descent");
     if (d.scale == 0.0) d.scale = system.mean_diagonal();
-    const double energy = evaluation.internal_energy + evaluation.contact_energy;
+    const double energy = evaluation.energy();
     const double residual = f->norm2();
     int negative = 0;
     try {

@@ -44,6 +44,7 @@ struct Evaluation {
   int active_contact_faces = 0;    // contact faces integrated (all ranks)
   int skipped_contact_faces = 0;   // contact faces beyond the cut-off, not integrated
   std::array<double, master_count> master_residual{};   // moment [nN nm], lift and slide forces [nN] (half)
+  double energy() const { return internal_energy + contact_energy; }   // Pi = Pi_int + Pi_c, whose gradient is f
 };
 
 // What the system contains besides the solid: the contact enrichment and an adhesion model (none: no contact).

@@ -236,7 +236,7 @@ public:
                const NOX::Solver::Generic& solver) override
   {
     const auto& previous = solver.getPreviousSolutionGroup();
-    const LinePoint origin{0.0, previous.getF().innerProduct(direction), energy(model_.last_evaluation()), true};
+    const LinePoint origin{0.0, previous.getF().innerProduct(direction), model_.last_evaluation().energy(), true};
     if (!(origin.slope < 0.0)) return fallback_->compute(group, step, direction, solver);
     double evaluated = 0.0;
     const auto evaluate = [&](double alpha) {
@@ -244,8 +244,8 @@ public:
       group.computeF();
       evaluated = alpha;
       const auto& evaluation = model_.last_evaluation();
-      return LinePoint{alpha, evaluation.admissible ? group.getF().innerProduct(direction) : 0.0, energy(evaluation),
-                       evaluation.admissible};
+      return LinePoint{alpha, evaluation.admissible ? group.getF().innerProduct(direction) : 0.0,
+                       evaluation.energy(), evaluation.admissible};
     };
     const LinePoint chosen = search_energy_line(evaluate, origin, EnergyLineSearchParameters{});
     if (!chosen.admissible) return fallback_->compute(group, step, direction, solver);
@@ -255,11 +255,6 @@ public:
   }
 
 private:
-  static double energy(const discretization::Evaluation& evaluation)
-  {
-    return evaluation.internal_energy + evaluation.contact_energy;
-  }
-
   const SpatulaModel& model_;
   Teuchos::RCP<NOX::LineSearch::Generic> fallback_;
 };

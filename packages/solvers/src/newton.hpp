@@ -45,7 +45,7 @@ struct NewtonIteration {
   int negative_pivots = -1;
   double seconds = 0.0;
   // f(x_k) . dx / f(x_k-1) . dx: the energy's slope along the step at its end over its slope at its start (0: the
-  // step ended at the minimum along its line; > 0: past it; < 0 and near 1: far short of it).
+  // step ended at the minimum along its line; < 0: past it; > 0 and near 1: far short of it).
   double slope_ratio = 0.0;
 };
 
