@@ -23,6 +23,8 @@ after 'maximum iterations' = 12; NOX's scaled norms):
   energy-line-search      session-5 with 'line search' = energy
   new                     today's defaults (as the parameter list declares them: the energy line search and the
                           'absolute tolerance' 1e-5)
+  give-up-always(-3)      new with the give-up rule (2, or 3, iterations that do not halve |f|) in every attempt,
+                          the first at a load too
 (A 'resume' rule, run 2026-12-02 and since removed, restarted the increments at half the failed one once the path
 had passed a failed load: 1,256 -> 1,231 tangents at 45 deg, 1,185 -> 1,215 at 60 deg, CPU 0.98 / 1.07: no gain.
 A fold predictor, run the same day and since removed, extrapolated 1 / |dx/dload|^2 of the last two steps to zero
@@ -89,7 +91,9 @@ EARLIER = {   # each as the rows of docs/step-control.csv were run ('Linear Solv
 }
 CONFIGURATIONS = {**{name: {**SESSION_5, **entries} for name, entries in EARLIER.items()},
                   'energy-line-search': {'absolute tolerance': 1e-6},
-                  'new': {}}
+                  'new': {},
+                  'give-up-always': ALWAYS,
+                  'give-up-always-3': {**ALWAYS, 'non-contracting iterations': 3}}
 QUANTITIES = ('P_max_nN', 'delta_u_z_nm', 'delta_Pi_ext_1e-18J')
 
 

@@ -73,8 +73,9 @@ struct ElementScatter {
     constexpr int dofs = 3 * N, most = 3 * N + master_count, targets = 3;
     int unknowns[most];    // distinct local unknowns touched
     int count = 0;
-    int target[dofs][targets];   // per element dof: positions in `unknowns` (or -1)
-    double coefficient[dofs][targets];
+    int target_count[dofs];              // per element dof: how many unknowns it depends on (0 to 3),
+    int target[dofs][targets];           // their positions in `unknowns`
+    double coefficient[dofs][targets];   // and du/dq
     double second[dofs];   // d2u/dalpha2 of rigid components
     int alpha_position = -1;
     auto position_of = [&](int unknown) {
@@ -86,49 +87,46 @@ struct ElementScatter {
     for (int p = 0; p < dofs; ++p) {
       const int node = nodes[p / 3], i = p % 3;
       const int kind = node_unknown(node, i);
-      for (int t = 0; t < targets; ++t) target[p][t] = -1;
+      int& n = target_count[p];
+      n = 0;
       second[p] = 0.0;
       if (kind >= 0) {
-        target[p][0] = position_of(kind);
-        coefficient[p][0] = 1.0;
+        target[p][n] = position_of(kind);
+        coefficient[p][n++] = 1.0;
       } else if (kind == rigid_component) {
         const RigidFaceMotion m = motion(node);
         if (i != 1) {   // the face moves in the X-Z plane only
-          target[p][0] = alpha_position = position_of(master_unknown[0]);
-          coefficient[p][0] = m.du_dalpha[i];
+          target[p][n] = alpha_position = position_of(master_unknown[0]);
+          coefficient[p][n++] = m.du_dalpha[i];
           second[p] = m.d2u_dalpha2[i];
-          target[p][1] = position_of(master_unknown[1]);
-          coefficient[p][1] = directions.lift[i];
-          target[p][2] = position_of(master_unknown[2]);
-          coefficient[p][2] = directions.slide[i];
+          target[p][n] = position_of(master_unknown[1]);
+          coefficient[p][n++] = directions.lift[i];
+          target[p][n] = position_of(master_unknown[2]);
+          coefficient[p][n++] = directions.slide[i];
         }
       } else if (kind == dependent_component) {
         for (int t = 0; t < 2; ++t) {
           const int parent = node_unknown(node_parent(node, t), i);
           if (parent < 0) continue;
-          target[p][t] = position_of(parent);
-          coefficient[p][t] = 0.5;
+          target[p][n] = position_of(parent);
+          coefficient[p][n++] = 0.5;
         }
       }
     }
     if (with_residual)
       for (int p = 0; p < dofs; ++p)
-        for (int t = 0; t < targets; ++t)
-          if (target[p][t] >= 0)
-            Kokkos::atomic_add(&residual(unknowns[target[p][t]], 0), coefficient[p][t] * r[p]);
+        for (int t = 0; t < target_count[p]; ++t)
+          Kokkos::atomic_add(&residual(unknowns[target[p][t]], 0), coefficient[p][t] * r[p]);
     if (!with_matrix) return;
 
     double reduced[most][most];
     for (int a = 0; a < count; ++a)
       for (int b = 0; b < count; ++b) reduced[a][b] = 0.0;
     for (int p = 0; p < dofs; ++p)
-      for (int s = 0; s < targets; ++s) {
-        if (target[p][s] < 0) continue;
+      for (int s = 0; s < target_count[p]; ++s)
         for (int q = 0; q < dofs; ++q)
-          for (int t = 0; t < targets; ++t)
-            if (target[q][t] >= 0)
-              reduced[target[p][s]][target[q][t]] += coefficient[p][s] * coefficient[q][t] * K[p][q];
-      }
+          for (int t = 0; t < target_count[q]; ++t)
+            reduced[target[p][s]][target[q][t]] += coefficient[p][s] * coefficient[q][t] * K[p][q];
     if (alpha_position >= 0)
       for (int p = 0; p < dofs; ++p) reduced[alpha_position][alpha_position] += r[p] * second[p];
 
@@ -137,22 +135,31 @@ struct ElementScatter {
         if (unknown == master_unknown[m] && master_prescribed[m]) return true;
       return false;
     };
-    int columns[most];
+    // The element's matrix columns in ascending order (every row of it has the same ones), so that sumIntoValues
+    // finds them in the row's sorted column indices by a forward search from the last one found.
+    int order[most], columns[most];
+    int free_count = 0;
+    for (int b = 0; b < count; ++b) {
+      if (prescribed(unknowns[b])) continue;
+      const int column = column_of(unknowns[b]);
+      int k = free_count++;
+      for (; k > 0 && columns[k - 1] > column; --k) {
+        columns[k] = columns[k - 1];
+        order[k] = order[k - 1];
+      }
+      columns[k] = column;
+      order[k] = b;
+    }
     double values[most];
     for (int a = 0; a < count; ++a) {
       if (prescribed(unknowns[a])) continue;
-      int n = 0;
-      for (int b = 0; b < count; ++b) {
-        if (prescribed(unknowns[b])) {   // the load column of a prescribed master: kept aside (df/dp)
-          for (int m = 0; m < master_count; ++m)
-            if (unknowns[b] == master_unknown[m]) Kokkos::atomic_add(&coupling(unknowns[a], m), reduced[a][b]);
-          continue;
-        }
-        columns[n] = column_of(unknowns[b]);
-        values[n++] = reduced[a][b];
-      }
-      const int added = matrix.sumIntoValues(unknowns[a], columns, n, values, false, true);
-      if (added != n) Kokkos::atomic_add(&dropped(0), n - added);
+      for (int b = 0; b < count; ++b)   // the load column of a prescribed master: kept aside (df/dp)
+        for (int m = 0; m < master_count; ++m)
+          if (unknowns[b] == master_unknown[m] && master_prescribed[m])
+            Kokkos::atomic_add(&coupling(unknowns[a], m), reduced[a][b]);
+      for (int j = 0; j < free_count; ++j) values[j] = reduced[a][order[j]];
+      const int added = matrix.sumIntoValues(unknowns[a], columns, free_count, values, true, true);
+      if (added != free_count) Kokkos::atomic_add(&dropped(0), free_count - added);
     }
   }
 };

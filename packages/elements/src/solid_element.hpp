@@ -121,12 +121,18 @@ KOKKOS_INLINE_FUNCTION ElementStatus solid_element(const Law& law, const double 
             double AG[9];
             for (int c = 0; c < 9; ++c)
               AG[c] = G[a][0] * A[3 * i][c] + G[a][1] * A[3 * i + 1][c] + G[a][2] * A[3 * i + 2][c];
-            for (int b = 0; b < n; ++b)
+            for (int b = a; b < n; ++b)   // the node blocks on and above the diagonal; the rest mirrored below
               for (int k = 0; k < 3; ++k)
                 K[3 * a + i][3 * b + k] +=
                     (AG[3 * k] * G[b][0] + AG[3 * k + 1] * G[b][1] + AG[3 * k + 2] * G[b][2]) * weight;
           }
       }
+  // A hyperelastic law's A_iJkL = d2W/dF_iJ dF_kL is symmetric (A_iJkL = A_kLiJ), and so is K.
+  if (K)
+    for (int a = 1; a < n; ++a)
+      for (int b = 0; b < a; ++b)
+        for (int i = 0; i < 3; ++i)
+          for (int k = 0; k < 3; ++k) K[3 * a + i][3 * b + k] = K[3 * b + k][3 * a + i];
   return ElementStatus::ok;
 }
 

@@ -1,5 +1,5 @@
-// The Hex8 solid kernel: residual and tangent against finite differences on a distorted element, the patch test,
-// rigid motions, and bad states.
+// The Hex8 and Hex13 solid kernels: residual and tangent against finite differences on a distorted element, the
+// patch test, rigid motions, and bad states.
 #include "laws/neo_hookean.hpp"
 #include "elements/solid_element.hpp"
 
@@ -172,4 +172,40 @@ TEST(SolidHex8, CauchyTraceOfUniaxialStretch)
   }
   // tr sigma = (3 lambda + 2 mu) e for small e
   EXPECT_NEAR(elements::mean_cauchy_trace<elements::Hex8Shape>(law, X0, u, 2) / e, 3 * law.lambda + 2 * law.mu, 1e-4);
+}
+
+// The Q1C2 enriched hexahedron: its bottom face biquadratic (mid-edge nodes 8-11 on edges 01, 12, 23, 30, centre
+// node 12), here slightly curved; the tangent (filled above its node-block diagonal and mirrored) against central
+// differences of the residual.
+TEST(SolidHex13, TangentIsTheResidualDerivative)
+{
+  double X[13][3], u[13][3];
+  for (int a = 0; a < 8; ++a)
+    for (int i = 0; i < 3; ++i) X[a][i] = X0[a][i];
+  for (int e = 0; e < 4; ++e)
+    for (int i = 0; i < 3; ++i) X[8 + e][i] = 0.5 * (X0[e][i] + X0[(e + 1) % 4][i]) + (i == 2 ? 0.05 * (e - 1.5) : 0.0);
+  for (int i = 0; i < 3; ++i) X[12][i] = 0.25 * (X0[0][i] + X0[1][i] + X0[2][i] + X0[3][i]) - (i == 2 ? 0.04 : 0.0);
+  for (int a = 0; a < 13; ++a)
+    for (int i = 0; i < 3; ++i) u[a][i] = 0.08 * std::sin(1.3 * a + 2.1 * i + 0.4) + 0.03 * X[a][(i + 1) % 3];
+  using elements::Hex13Shape;
+  for (int order : {2, 3}) {
+    double energy, r[39], K[39][39];
+    ASSERT_EQ(elements::solid_element<Hex13Shape>(law, X, u, order, energy, r, K), ElementStatus::ok);
+    const double h = 1e-6;
+    double worst = 0.0, largest = 0.0;
+    for (int q = 0; q < 39; ++q) {
+      double up[13][3], um[13][3], rp[39], rm[39], e;
+      for (int a = 0; a < 13; ++a)
+        for (int i = 0; i < 3; ++i) up[a][i] = um[a][i] = u[a][i];
+      up[q / 3][q % 3] += h;
+      um[q / 3][q % 3] -= h;
+      elements::solid_element<Hex13Shape>(law, X, up, order, e, rp);
+      elements::solid_element<Hex13Shape>(law, X, um, order, e, rm);
+      for (int p = 0; p < 39; ++p) {
+        worst = std::max(worst, std::abs((rp[p] - rm[p]) / (2 * h) - K[p][q]));
+        largest = std::max(largest, std::abs(K[p][q]));
+      }
+    }
+    EXPECT_LT(worst / largest, 1e-6) << "order " << order;
+  }
 }
