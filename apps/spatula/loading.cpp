@@ -66,6 +66,10 @@ void LoadingParameters::declare(Teuchos::ParameterList& loading)
   auto& jump = parameters::declare_sublist(loading, "Jump", "energy descent past an instability");
   parameters::declare_int(jump, "maximum iterations", d.jump.maximum_iterations, "iterations per jump",
                           Range::closed(1, 100000));
+  parameters::declare_int(jump, "reused factors", d.jump.reused_factors,
+                          "descent iterations one positive definite factorization may serve after its own (while "
+                          "each takes at least half its step); 0: a fresh factorization every iteration",
+                          Range::closed(0, 1000));
   parameters::declare_double(jump, "step balance tolerance", d.step_balance_tolerance,
                              "largest energy released by one converged load step, over Pi_c0: a step releasing more "
                              "crossed a snap (Newton landed on another branch) and is cut back, or at the smallest "
@@ -118,6 +122,7 @@ LoadingParameters LoadingParameters::from(const Teuchos::ParameterList& loading)
   std::sort(p.checkpoints.begin(), p.checkpoints.end());
   const auto& jump = loading.sublist("Jump");
   p.jump.maximum_iterations = jump.get<int>("maximum iterations");
+  p.jump.reused_factors = jump.get<int>("reused factors");
   p.step_balance_tolerance = jump.get<double>("step balance tolerance");
   const auto& arc = loading.sublist("Arc Length");
   p.arc_length_steps.initial = arc.get<double>("initial");

@@ -401,6 +401,8 @@ struct LoadPath::Descent {
   int iteration = 0;
   int indefinite = 0, no_decrease = 0, accepted = 0;
   bool unshifted_tried = false;   // at the current state, with a small gradient
+  int kept = 0;                   // further iterations the current (positive definite) factors may serve
+  int reused = 0;                 // iterations served by factors made at an earlier state
   double residual = 0.0;          // |f| at the last iteration [nN]
   std::ostringstream table;
 
@@ -457,19 +459,24 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
   auto& mumps = descent_solver();
   auto f = system.create_vector(), direction = system.create_vector(), trial = system.create_vector();
   for (; d.iteration < jump_.maximum_iterations; ++d.iteration) {
-    system.set_damping(d.eta, Teuchos::rcpFromRef(x));   // anchored at x: a pure shift of the tangent, f unchanged
-    const auto evaluation = system.evaluate(x, f.get(), true);
-    system.set_damping(0.0, Teuchos::null);
+    // Kept factors (of a positive definite shifted tangent at an earlier state) still give a descent direction
+    // -M^-1 f; the iteration then needs only f and Pi. Otherwise the tangent at x is assembled and factored.
+    const bool fresh = d.kept == 0;
+    if (fresh) system.set_damping(d.eta, Teuchos::rcpFromRef(x));   // anchored at x: a pure shift, f unchanged
+    const auto evaluation = system.evaluate(x, f.get(), fresh);
+    if (fresh) system.set_damping(0.0, Teuchos::null);
     if (!evaluation.admissible) return std::string("an element inverted during the energy descent");
     if (d.scale == 0.0) d.scale = system.mean_diagonal();
     const double energy = evaluation.energy();
     const double residual = f->norm2();
     int negative = 0;
-    try {
-      mumps.factor(*system.jacobian());
-      negative = mumps.statistics().negative_pivots;
-    } catch (const std::exception&) {
-      negative = 1;   // singular: treat like indefinite
+    if (fresh) {
+      try {
+        mumps.factor(*system.jacobian());
+        negative = mumps.statistics().negative_pivots;
+      } catch (const std::exception&) {
+        negative = 1;   // singular: treat like indefinite
+      }
     }
     if (negative > 0) {   // not a descent direction yet: shift more
       d.row(tables_, negative, residual, 0.0, energy);
@@ -482,8 +489,12 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
     // with a shift is tested once without it: is the unshifted tangent positive definite there? (Without this a
     // descent that has reached the minimum keeps raising the shift, since no step can lower Pi any more.)
     d.residual = residual;
-    if (residual < small_gradient && (d.eta == 0.0 || !d.unshifted_tried)) {
-      d.row(tables_, negative, residual, 0.0, energy);
+    if (residual < small_gradient && (d.eta == 0.0 || !d.unshifted_tried || !fresh)) {
+      d.row(tables_, fresh ? negative : -1, residual, 0.0, energy);
+      if (!fresh) {   // the tests below need the inertia at this state
+        d.kept = 0;
+        continue;
+      }
       if (d.eta == 0.0) return std::nullopt;
       d.unshifted_tried = true;
       d.eta = 0.0;
@@ -493,7 +504,12 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
     direction->scale(-1.0);
     double best_energy = energy;
     const double best_step = descent_line_search(x, *direction, energy, f->dot(*direction), *trial, best_energy);
-    d.row(tables_, negative, residual, best_step, best_energy);
+    d.row(tables_, fresh ? negative : -1, residual, best_step, best_energy);
+    if (!fresh) ++d.reused;
+    if (best_step == 0.0 && !fresh) {   // the kept factors are out of date: fresh ones at this state
+      d.kept = 0;
+      continue;
+    }
     if (best_step == 0.0 && d.eta == 0.0) return std::nullopt;   // no measurable decrease: let Newton finish
     if (best_step == 0.0) {   // no decrease along this direction: stiffen the shift
       ++d.no_decrease;
@@ -503,8 +519,14 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
     ++d.accepted;
     d.unshifted_tried = false;
     x.update(best_step, *direction, 1.0);
-    d.eta = best_step >= 1.0 ? 0.25 * d.eta : 2.0 * d.eta;
-    if (d.eta < 1e-9 * d.scale) d.eta = 0.0;
+    if (fresh) {
+      d.eta = best_step >= 1.0 ? 0.25 * d.eta : 2.0 * d.eta;
+      if (d.eta < 1e-9 * d.scale) d.eta = 0.0;
+      d.kept = jump_.reused_factors;
+    } else {
+      --d.kept;
+    }
+    if (best_step < 0.5) d.kept = 0;   // a short step: the factors no longer fit the energy's curvature here
   }
   return std::nullopt;
 }

@@ -119,6 +119,10 @@ struct LoadPoint {
 struct JumpParameters {
   int maximum_iterations = 500;
   double shift_growth = 4.0;      // eta factor while the shifted tangent is indefinite
+  // Consecutive descent iterations one positive definite factorization may serve after the one it was made for
+  // (while each takes at least half its step: -M^-1 f is a descent direction for any positive definite M); 0: a
+  // fresh factorization every iteration.
+  int reused_factors = 0;
   double step_balance_tolerance = 0.0;   // [nN nm, half model]; 0: not checked
 };
 

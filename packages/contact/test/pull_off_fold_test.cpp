@@ -74,7 +74,9 @@ double bisect(const std::function<double(double)>& f, double a, double b)
 
 }  // namespace
 
-TEST(PullOffFold, StepControllerStopsAtTheAnalyticFoldAndTheJumpReleasesItsEnergy)
+// The lift to the fold and past it; the jump's energy descent with a fresh factorization every iteration or with
+// factors kept for up to `reused_factors` further iterations.
+static void expect_stop_at_the_fold_and_the_jumps_release(int reused_factors)
 {
   const double side = 4.0;
   AnalyticBar bar;
@@ -113,6 +115,7 @@ TEST(PullOffFold, StepControllerStopsAtTheAnalyticFoldAndTheJumpReleasesItsEnerg
   // attempt just past the fold down to the far branch, which the check catches and cuts back.
   analysis::JumpParameters jump_parameters;
   jump_parameters.step_balance_tolerance = 1e-4 * side * side * adhesion.lennard_jones.work_of_adhesion();
+  jump_parameters.reused_factors = reused_factors;
   path.set_jump_parameters(jump_parameters);
   analysis::StepParameters steps;
   steps.initial = 0.2;
@@ -159,4 +162,22 @@ TEST(PullOffFold, StepControllerStopsAtTheAnalyticFoldAndTheJumpReleasesItsEnerg
   EXPECT_NEAR(after.released, released, 0.01 * released);
   EXPECT_NEAR(after.force, area * bar.derivative(g_far), 0.02 * area * bar.derivative(g_far));
   for (std::size_t k = jump + 1; k < points.size(); ++k) EXPECT_FALSE(points[k].after_jump);
+  // Every descent iteration with fresh factors solves once with them (an indefinite one not at all); kept factors
+  // serve iterations without a factorization.
+  const auto* descents = path.descent_statistics();
+  ASSERT_NE(descents, nullptr);
+  if (reused_factors == 0)
+    EXPECT_LE(descents->solves, descents->factorizations);
+  else
+    EXPECT_GT(descents->solves, descents->factorizations) << "no descent iteration was served by kept factors";
+}
+
+TEST(PullOffFold, StepControllerStopsAtTheAnalyticFoldAndTheJumpReleasesItsEnergy)
+{
+  expect_stop_at_the_fold_and_the_jumps_release(0);
+}
+
+TEST(PullOffFold, TheJumpWithReusedDescentFactorsReleasesTheSameEnergy)
+{
+  expect_stop_at_the_fold_and_the_jumps_release(8);
 }

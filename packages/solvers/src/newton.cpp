@@ -21,6 +21,7 @@
 #include <Thyra_TpetraThyraWrappers.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <iomanip>
 #include <ostream>
@@ -85,6 +86,10 @@ void NewtonParameters::declare(Teuchos::ParameterList& list)
                              {0.0, 10.0, true, false});
   // 2 x 0.125 in every attempt: on the coarse pull-off at 45 deg it ends the hopeless first attempts at a fold
   // (12 iterations before) and no converging one, here or on xml/pull-off-medium.xml (benchmarks/step_control.py).
+  parameters::declare_double(list, "give up above tolerance", d.give_up_above_tolerance,
+                             "the give-up rules ('non-contracting iterations', 'short steps') count an iteration only "
+                             "while |f| is above this multiple of 'absolute tolerance' (in the norm applied); 0: at "
+                             "any |f|", Range::closed(0.0, 1e12));
   parameters::declare_int(list, "short steps", d.short_steps,
                           "give up on a load step after this many consecutive iterations whose line search cut the "
                           "step to at most 'short step' while |f| was above 1e-3 of its first value (0: off)",
@@ -117,6 +122,7 @@ NewtonParameters NewtonParameters::from(const Teuchos::ParameterList& list)
   p.inexact = list.get<std::string>("forcing term") == "Eisenstat-Walker";
   p.non_contracting_iterations = list.get<int>("non-contracting iterations");
   p.contraction = list.get<double>("contraction");
+  p.give_up_above_tolerance = list.get<double>("give up above tolerance");
   p.give_up_only_after_failure = list.get<std::string>("give up") == "after a failed step";
   p.short_steps = list.get<int>("short steps");
   p.short_step = list.get<double>("short step");
@@ -181,8 +187,9 @@ class GiveUp : public NOX::StatusTest::Generic {
 public:
   // Whether an iteration counts, from |f| now, |f| before and the line-search step (1 without a line search).
   using Rule = std::function<bool(double now, double before, double step)>;
-  GiveUp(std::string description, int limit, double far, Rule rule)
-      : description_(std::move(description)), limit_(limit), far_(far), rule_(std::move(rule))
+  // An iteration counts while |f| >= far |f_0| and |f| >= floor.
+  GiveUp(std::string description, int limit, double far, double floor, Rule rule)
+      : description_(std::move(description)), limit_(limit), far_(far), floor_(floor), rule_(std::move(rule))
   {
   }
 
@@ -200,7 +207,7 @@ public:
     const double now = solver.getSolutionGroup().getNormF(), before = solver.getPreviousSolutionGroup().getNormF();
     const auto* line_search = dynamic_cast<const NOX::Solver::LineSearchBased*>(&solver);
     const double step = line_search ? line_search->getStepSize() : 1.0;
-    count_ = now >= far_ * start_ && rule_(now, before, step) ? count_ + 1 : 0;
+    count_ = now >= far_ * start_ && now >= floor_ && rule_(now, before, step) ? count_ + 1 : 0;
     status_ = count_ >= limit_ ? NOX::StatusTest::Failed : NOX::StatusTest::Unconverged;
     return status_;
   }
@@ -214,7 +221,7 @@ public:
 private:
   std::string description_;
   int limit_;
-  double far_;
+  double far_, floor_;
   Rule rule_;
   double start_ = 0.0;
   int count_ = 0, last_ = 0;
@@ -303,17 +310,20 @@ NewtonResult NewtonSolver::solve(discretization::Vector& x, std::ostream* table,
   tests->addStatusTest(Teuchos::rcp(new MaxIters(parameters_.maximum_iterations)));
   tests->addStatusTest(Teuchos::rcp(new FiniteValue));
   constexpr double hopeless_above = 1e-3;   // of the attempt's first |f|: below it an attempt is converging
+  // ... as it is below a few times the absolute tolerance, in |f|_2 (NOX's scaled test is |f|_2 / sqrt(n))
+  const double floor = parameters_.give_up_above_tolerance * parameters_.absolute_tolerance *
+                       (parameters_.scaled_norms ? std::sqrt(double(group->getF().length())) : 1.0);
   const bool give_up = parameters_.non_contracting_iterations > 0 &&
                        (after_failure || !parameters_.give_up_only_after_failure);
   if (give_up)   // far from a solution (past a fold): give up early
     tests->addStatusTest(Teuchos::rcp(new GiveUp(
-        "hopeless attempt (|f| not shrinking)", parameters_.non_contracting_iterations, hopeless_above,
+        "hopeless attempt (|f| not shrinking)", parameters_.non_contracting_iterations, hopeless_above, floor,
         [contraction = parameters_.contraction](double now, double before, double) {
           return now >= contraction * before;
         })));
   Teuchos::RCP<GiveUp> short_steps;
   if (parameters_.short_steps > 0) {
-    short_steps = Teuchos::rcp(new GiveUp("short line-search steps", parameters_.short_steps, hopeless_above,
+    short_steps = Teuchos::rcp(new GiveUp("short line-search steps", parameters_.short_steps, hopeless_above, floor,
                                           [short_step = parameters_.short_step](double, double, double step) {
                                             return step <= short_step;
                                           }));

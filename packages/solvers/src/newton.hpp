@@ -25,6 +25,10 @@ struct NewtonParameters {
   int non_contracting_iterations = 2;      // give up after this many iterations with |f_k| >= contraction |f_k-1|
   bool give_up_only_after_failure = true;  // ... only in attempts made after a step failed (near a fold)
   double contraction = 0.5;
+  // The give-up rules count an iteration only while |f| is above this multiple of the absolute tolerance: nearer
+  // it an attempt is converging, however slowly (on the fine mesh Newton near a fold stalls at |f| a few times the
+  // tolerance, and giving up there sent the path into energy descents that stayed on the branch). 0: any |f|.
+  double give_up_above_tolerance = 10.0;
   // Give up on any attempt (the first too) once the line search has cut the step to at most `short_step` in
   // `short_steps` iterations in a row while |f| is still above 1e-3 of its first value: Newton's direction is no
   // use there (past a fold, an indefinite tangent). 0: off.
