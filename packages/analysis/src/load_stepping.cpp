@@ -402,7 +402,6 @@ struct LoadPath::Descent {
   int indefinite = 0, no_decrease = 0, accepted = 0;
   bool unshifted_tried = false;   // at the current state, with a small gradient
   int kept = 0;                   // further iterations the current (positive definite) factors may serve
-  int reused = 0;                 // iterations served by factors made at an earlier state
   double residual = 0.0;          // |f| at the last iteration [nN]
   std::ostringstream table;
 
@@ -505,7 +504,6 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
     double best_energy = energy;
     const double best_step = descent_line_search(x, *direction, energy, f->dot(*direction), *trial, best_energy);
     d.row(tables_, fresh ? negative : -1, residual, best_step, best_energy);
-    if (!fresh) ++d.reused;
     if (best_step == 0.0 && !fresh) {   // the kept factors are out of date: fresh ones at this state
       d.kept = 0;
       continue;

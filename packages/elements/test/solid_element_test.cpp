@@ -32,6 +32,29 @@ double energy_at(const double u[8][3], int order = 2)
   return energy;
 }
 
+// The largest difference between K[p][q] and the central difference of r_p in u_q (step 1e-6), over the largest
+// |K[p][q]|, for an element of `Shape` at (X, u); K is the element's tangent there.
+template <class Shape, int n = Shape::nodes>
+double tangent_error(const double (&X)[n][3], const double (&u)[n][3], int order, const double (&K)[3 * n][3 * n])
+{
+  const double h = 1e-6;
+  double worst = 0.0, largest = 0.0;
+  for (int q = 0; q < 3 * n; ++q) {
+    double up[n][3], um[n][3], rp[3 * n], rm[3 * n], e;
+    for (int a = 0; a < n; ++a)
+      for (int i = 0; i < 3; ++i) up[a][i] = um[a][i] = u[a][i];
+    up[q / 3][q % 3] += h;
+    um[q / 3][q % 3] -= h;
+    elements::solid_element<Shape>(law, X, up, order, e, rp);
+    elements::solid_element<Shape>(law, X, um, order, e, rm);
+    for (int p = 0; p < 3 * n; ++p) {
+      worst = std::max(worst, std::abs((rp[p] - rm[p]) / (2 * h) - K[p][q]));
+      largest = std::max(largest, std::abs(K[p][q]));
+    }
+  }
+  return worst / largest;
+}
+
 }  // namespace
 
 TEST(SolidHex8, ResidualIsTheEnergyGradient)
@@ -60,22 +83,10 @@ TEST(SolidHex8, TangentIsTheResidualDerivativeForEveryQuadratureOrder)
     double u[8][3], energy, r[24], K[24][24];
     some_displacement(u);
     ASSERT_EQ(elements::hex8_solid(law, X0, u, order, energy, r, K), ElementStatus::ok);
-    const double h = 1e-6;
-    double worst = 0.0, largest = 0.0;
-    for (int q = 0; q < 24; ++q) {
-      double up[8][3], um[8][3], rp[24], rm[24], e;
-      for (int a = 0; a < 8; ++a)
-        for (int i = 0; i < 3; ++i) up[a][i] = um[a][i] = u[a][i];
-      up[q / 3][q % 3] += h;
-      um[q / 3][q % 3] -= h;
-      elements::hex8_solid(law, X0, up, order, e, rp);
-      elements::hex8_solid(law, X0, um, order, e, rm);
-      for (int p = 0; p < 24; ++p) {
-        worst = std::max(worst, std::abs((rp[p] - rm[p]) / (2 * h) - K[p][q]));
-        largest = std::max(largest, std::abs(K[p][q]));
-      }
-    }
-    EXPECT_LT(worst / largest, 1e-6) << "order " << order;
+    EXPECT_LT(tangent_error<elements::Hex8Shape>(X0, u, order, K), 1e-6) << "order " << order;
+    double largest = 0.0;
+    for (int p = 0; p < 24; ++p)
+      for (int q = 0; q < 24; ++q) largest = std::max(largest, std::abs(K[p][q]));
     for (int p = 0; p < 24; ++p)
       for (int q = 0; q < 24; ++q) EXPECT_NEAR(K[p][q], K[q][p], 1e-10 * largest);
   }
@@ -191,21 +202,6 @@ TEST(SolidHex13, TangentIsTheResidualDerivative)
   for (int order : {2, 3}) {
     double energy, r[39], K[39][39];
     ASSERT_EQ(elements::solid_element<Hex13Shape>(law, X, u, order, energy, r, K), ElementStatus::ok);
-    const double h = 1e-6;
-    double worst = 0.0, largest = 0.0;
-    for (int q = 0; q < 39; ++q) {
-      double up[13][3], um[13][3], rp[39], rm[39], e;
-      for (int a = 0; a < 13; ++a)
-        for (int i = 0; i < 3; ++i) up[a][i] = um[a][i] = u[a][i];
-      up[q / 3][q % 3] += h;
-      um[q / 3][q % 3] -= h;
-      elements::solid_element<Hex13Shape>(law, X, up, order, e, rp);
-      elements::solid_element<Hex13Shape>(law, X, um, order, e, rm);
-      for (int p = 0; p < 39; ++p) {
-        worst = std::max(worst, std::abs((rp[p] - rm[p]) / (2 * h) - K[p][q]));
-        largest = std::max(largest, std::abs(K[p][q]));
-      }
-    }
-    EXPECT_LT(worst / largest, 1e-6) << "order " << order;
+    EXPECT_LT(tangent_error<Hex13Shape>(X, u, order, K), 1e-6) << "order " << order;
   }
 }

@@ -84,12 +84,12 @@ void NewtonParameters::declare(Teuchos::ParameterList& list)
   parameters::declare_double(list, "contraction", d.contraction,
                              "|f_k| / |f_k-1| at or above which an iteration counts as non-contracting",
                              {0.0, 10.0, true, false});
-  // 2 x 0.125 in every attempt: on the coarse pull-off at 45 deg it ends the hopeless first attempts at a fold
-  // (12 iterations before) and no converging one, here or on xml/pull-off-medium.xml (benchmarks/step_control.py).
   parameters::declare_double(list, "give up above tolerance", d.give_up_above_tolerance,
                              "the give-up rules ('non-contracting iterations', 'short steps') count an iteration only "
                              "while |f| is above this multiple of 'absolute tolerance' (in the norm applied); 0: at "
                              "any |f|", Range::closed(0.0, 1e12));
+  // 2 x 0.125 in every attempt: on the coarse pull-off at 45 deg it ends the hopeless first attempts at a fold
+  // (12 iterations before) and no converging one, here or on xml/pull-off-medium.xml (benchmarks/step_control.py).
   parameters::declare_int(list, "short steps", d.short_steps,
                           "give up on a load step after this many consecutive iterations whose line search cut the "
                           "step to at most 'short step' while |f| was above 1e-3 of its first value (0: off)",
