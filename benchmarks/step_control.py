@@ -25,6 +25,13 @@ after 'maximum iterations' = 12; NOX's scaled norms):
                           'absolute tolerance' 1e-5)
   give-up-always(-3)      new with the give-up rule (2, or 3, iterations that do not halve |f|) in every attempt,
                           the first at a load too
+  give-up-floor-0         new with 'give up above tolerance' = 0 (the give-up rules count at any |f|, as before
+                          the seventh session)
+  descent-cost            new with 'Loading/Jump/refactor' = cost (the jumps' energy descents keep their factors
+                          while the measured rate of decrease of Pi pays for it)
+  descend-after-1 / -2    new with 'Loading/Jump/descend after failures' = 1 or 2 (the energy descent at the load
+                          of the first or second failed attempt in a row, an ordinary step if it releases no more
+                          than the step balance tolerance); -2-cost with the cost rule as well
 (A 'resume' rule, run 2026-12-02 and since removed, restarted the increments at half the failed one once the path
 had passed a failed load: 1,256 -> 1,231 tangents at 45 deg, 1,185 -> 1,215 at 60 deg, CPU 0.98 / 1.07: no gain.
 A fold predictor, run the same day and since removed, extrapolated 1 / |dx/dload|^2 of the last two steps to zero
@@ -71,7 +78,7 @@ AFTER_FAILURE = {**SESSION_3, 'non-contracting iterations': 2, 'contraction': 0.
 # The defaults before the energy line search and the absolute tolerance 1e-5 (2026-12-02, sixth session).
 SESSION_5 = {'line search': 'backtrack', 'absolute tolerance': 1e-6}
 EARLIER = {   # each as the rows of docs/step-control.csv were run ('Linear Solver': that list's entries,
-              # 'Steps': entries of both step lists), with SESSION_5 below them
+              # 'Steps': entries of both step lists, 'Jump': Loading/Jump's), with SESSION_5 below them
     'base': BEFORE,
     'non-contracting-3': {**BEFORE, 'non-contracting iterations': 3, 'contraction': 1.0, **ALWAYS},
     'non-contracting-2': {**BEFORE, 'non-contracting iterations': 2, 'contraction': 1.0, **ALWAYS},
@@ -93,7 +100,12 @@ CONFIGURATIONS = {**{name: {**SESSION_5, **entries} for name, entries in EARLIER
                   'energy-line-search': {'absolute tolerance': 1e-6},
                   'new': {},
                   'give-up-always': ALWAYS,
-                  'give-up-always-3': {**ALWAYS, 'non-contracting iterations': 3}}
+                  'give-up-always-3': {**ALWAYS, 'non-contracting iterations': 3},
+                  'give-up-floor-0': {'give up above tolerance': 0.0},
+                  'descent-cost': {'Jump': {'refactor': 'cost'}},
+                  'descend-after-1': {'Jump': {'descend after failures': 1}},
+                  'descend-after-2': {'Jump': {'descend after failures': 2}},
+                  'descend-after-2-cost': {'Jump': {'descend after failures': 2, 'refactor': 'cost'}}}
 QUANTITIES = ('P_max_nN', 'delta_u_z_nm', 'delta_Pi_ext_1e-18J')
 
 
@@ -103,8 +115,9 @@ def measure(work, label, newton, mesh, theta):
     newton = dict(newton)
     linear = newton.pop('Linear Solver', None)
     steps = newton.pop('Steps', None)
+    jump = newton.pop('Jump', None)
     open(xml, 'w').write(benchmark_scene(directory, mesh=mesh, theta_y=float(theta), newton=newton or None,
-                                         linear_solver=linear, steps=steps))
+                                         linear_solver=linear, steps=steps, jump=jump))
     environment = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     started = time.time()

@@ -66,10 +66,22 @@ void LoadingParameters::declare(Teuchos::ParameterList& loading)
   auto& jump = parameters::declare_sublist(loading, "Jump", "energy descent past an instability");
   parameters::declare_int(jump, "maximum iterations", d.jump.maximum_iterations, "iterations per jump",
                           Range::closed(1, 100000));
+  parameters::declare_string(jump, "refactor",
+                             parameters::name_of(d.jump.refactor, analysis::JumpParameters::refactor_names()),
+                             "when a descent replaces its factors: count (after 'reused factors' further iterations) "
+                             "or cost (once the last iteration the kept factors served lowered the energy more "
+                             "slowly per second than their cycle has on average, factorization included; 'reused "
+                             "factors' is then not used)", analysis::JumpParameters::refactor_names());
   parameters::declare_int(jump, "reused factors", d.jump.reused_factors,
-                          "descent iterations one positive definite factorization may serve after its own (while "
-                          "each takes at least half its step); 0: a fresh factorization every iteration",
-                          Range::closed(0, 1000));
+                          "refactor = count: descent iterations one positive definite factorization may serve after "
+                          "its own (while each takes at least half its step); 0: a fresh factorization every "
+                          "iteration", Range::closed(0, 1000));
+  parameters::declare_int(jump, "descend after failures", d.jump.descend_after_failures,
+                          "after this many failed step attempts in a row, try the energy descent at the last "
+                          "failed load: an ordinary step if it releases no more than the step balance tolerance (a "
+                          "small snap of the peel front), else bisect towards that load as before and try no early "
+                          "descent until it is passed; 0: never (bisect to the smallest increment, then jump)",
+                          Range::closed(0, 100));
   parameters::declare_double(jump, "step balance tolerance", d.step_balance_tolerance,
                              "largest energy released by one converged load step, over Pi_c0: a step releasing more "
                              "crossed a snap (Newton landed on another branch) and is cut back, or at the smallest "
@@ -122,7 +134,10 @@ LoadingParameters LoadingParameters::from(const Teuchos::ParameterList& loading)
   std::sort(p.checkpoints.begin(), p.checkpoints.end());
   const auto& jump = loading.sublist("Jump");
   p.jump.maximum_iterations = jump.get<int>("maximum iterations");
+  p.jump.refactor = parameters::choice<analysis::JumpParameters::Refactor>(jump, "refactor",
+                                                                           analysis::JumpParameters::refactor_names());
   p.jump.reused_factors = jump.get<int>("reused factors");
+  p.jump.descend_after_failures = jump.get<int>("descend after failures");
   p.step_balance_tolerance = jump.get<double>("step balance tolerance");
   const auto& arc = loading.sublist("Arc Length");
   p.arc_length_steps.initial = arc.get<double>("initial");

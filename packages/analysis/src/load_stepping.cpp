@@ -2,6 +2,7 @@
 
 #include "parameters/parameter_validation.hpp"
 
+#include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_TimeMonitor.hpp>
 
 #include <algorithm>
@@ -193,6 +194,8 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
     resumed_control_.reset();
   }
   const double smallest = steps.minimum * unit * (1 - 1e-12);
+  int failures = 0;            // failed attempts in a row from the current converged state
+  bool early_descent = true;   // no early descent was refused since the path last passed a failed load
   while (!detached_ && direction * (target - value) > 1e-12 * std::max(1.0, std::abs(target))) {
     increment = failed.limit(std::min(increment, direction * (target - value)), value);
     const double load = value + direction * increment;
@@ -201,7 +204,25 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
     const auto result = newton_.solve(*trial, tables_ ? &table : nullptr, failed.known());
     if (!result.converged) {
       if (log_) *log_ << table.str() << "  step to " << name << " = " << load_text(load / unit) << " failed ("
-                      << result.failure << "); cutting the increment\n";
+                      << result.failure << ")";
+      ++failures;
+      if (early_descent && jump_.descend_after_failures > 0 && failures >= jump_.descend_after_failures &&
+          past_folds_ == PastFolds::jump && jump_.step_balance_tolerance > 0.0) {
+        if (log_) *log_ << "; energy descent at this load\n";
+        if (auto point = descend_early(controlled, load, *trial)) {
+          value = load;
+          failed.reached(value);
+          failures = 0;
+          point->step_control.increment = increment;
+          failed.save(point->step_control);
+          take_step(*trial, *point, increment, "", on_point);
+          continue;
+        }
+        early_descent = false;   // a snap proper ahead: bisect towards it
+        if (log_) *log_ << "  cutting the increment\n";
+      } else if (log_) {
+        *log_ << "; cutting the increment\n";
+      }
       failed.failed(load);
       increment *= steps.cut;
       if (increment < smallest) {   // no equilibrium near the last one: past the fold, or stop
@@ -211,6 +232,8 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
         if (auto* failure = std::get_if<Failure>(&beyond)) return *failure;
         value = std::get<double>(beyond);
         failed.forget();
+        failures = 0;
+        early_descent = true;
         increment = steps.initial * unit;   // on a new branch: accept() has started the predictor afresh
       }
       if (!steps.predict_after_failure) previous_increment_ = older_increment_ = 0.0;
@@ -250,6 +273,8 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
     const double taken = increment;
     value += direction * increment;
     failed.reached(value);
+    failures = 0;
+    if (!failed.known()) early_descent = true;
     if (iterations <= steps.easy_iterations) increment = std::min(increment * steps.growth, steps.maximum * unit);
     point.step_control.increment = increment;
     failed.save(point.step_control);
@@ -349,6 +374,28 @@ void LoadPath::take_step(const Vector& state, const LoadPoint& point, double inc
   if (on_point) on_point(points_.back(), *x_);
 }
 
+std::optional<LoadPoint> LoadPath::descend_early(Master controlled, double load, Vector& state)
+{
+  Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: early energy descent"));
+  state.assign(*x_);
+  model_.system().set_master(state, controlled, load);
+  const auto outcome = descend(state);
+  if (const auto* reason = std::get_if<std::string>(&outcome)) {
+    if (log_) *log_ << "  the descent found no stable state (" << *reason << ")\n";
+    return std::nullopt;
+  }
+  auto point = measure(state, std::get<int>(outcome), -1);
+  const double released = released_energy(point);
+  if (std::abs(released) > jump_.step_balance_tolerance) {
+    if (log_) *log_ << "  the descent released " << load_text(2.0 * released) << " nN nm (full spatula), more than "
+                    << "the step balance tolerance: a snap proper\n";
+    return std::nullopt;
+  }
+  if (log_) *log_ << "  the descent reached a state on this branch in " << std::get<int>(outcome)
+                  << " iterations (released " << load_text(2.0 * released) << " nN nm, full spatula): an ordinary step\n";
+  return point;
+}
+
 void LoadPath::accept(const Vector& x, int iterations, int negative_pivots, const Callback& on_point)
 {
   previous_->assign(*x_);
@@ -392,6 +439,26 @@ void LoadPath::restart(const Vector& x, const LoadPoint& point, bool resume_step
   points_.push_back(measured);
 }
 
+const std::vector<std::string>& JumpParameters::refactor_names()
+{
+  static const std::vector<std::string> names = {"count", "cost"};
+  return names;
+}
+
+void DescentCost::factored(double seconds, double decrease)
+{
+  seconds_ = seconds;
+  decrease_ = decrease;
+}
+
+bool DescentCost::keep(double seconds, double decrease)
+{
+  const bool keep = decrease > 0.0 && decrease * seconds_ >= decrease_ * seconds;   // rate >= the cycle's rate
+  seconds_ += seconds;
+  decrease_ += decrease;
+  return keep;
+}
+
 // Minimizes Pi at the current load from x (shifted Newton + expanding line search on Pi), then confirms with plain
 // Newton. Returns the iterations used, or the reason it failed.
 // The state of one energy descent: the shift eta of the tangent (relative to `scale`, the mean diagonal), where its
@@ -402,6 +469,8 @@ struct LoadPath::Descent {
   int indefinite = 0, no_decrease = 0, accepted = 0;
   bool unshifted_tried = false;   // at the current state, with a small gradient
   int kept = 0;                   // further iterations the current (positive definite) factors may serve
+  DescentCost cost;               // refactor = cost: the current factors' cycle
+  double cycle_began = now();     // when fresh factors were last asked for
   double residual = 0.0;          // |f| at the last iteration [nN]
   std::ostringstream table;
 
@@ -457,7 +526,13 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
   auto& system = model_.system();
   auto& mumps = descent_solver();
   auto f = system.create_vector(), direction = system.create_vector(), trial = system.create_vector();
+  const auto& comm = *system.owned_map()->getComm();
+  const auto refactor = [&] {   // the kept factors are given up: a new cycle begins
+    d.kept = 0;
+    d.cycle_began = now();
+  };
   for (; d.iteration < jump_.maximum_iterations; ++d.iteration) {
+    const double iteration_began = now();
     // Kept factors (of a positive definite shifted tangent at an earlier state) still give a descent direction
     // -M^-1 f; the iteration then needs only f and Pi. Otherwise the tangent at x is assembled and factored.
     const bool fresh = d.kept == 0;
@@ -491,7 +566,7 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
     if (residual < small_gradient && (d.eta == 0.0 || !d.unshifted_tried || !fresh)) {
       d.row(tables_, fresh ? negative : -1, residual, 0.0, energy);
       if (!fresh) {   // the tests below need the inertia at this state
-        d.kept = 0;
+        refactor();
         continue;
       }
       if (d.eta == 0.0) return std::nullopt;
@@ -505,7 +580,7 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
     const double best_step = descent_line_search(x, *direction, energy, f->dot(*direction), *trial, best_energy);
     d.row(tables_, fresh ? negative : -1, residual, best_step, best_energy);
     if (best_step == 0.0 && !fresh) {   // the kept factors are out of date: fresh ones at this state
-      d.kept = 0;
+      refactor();
       continue;
     }
     if (best_step == 0.0 && d.eta == 0.0) return std::nullopt;   // no measurable decrease: let Newton finish
@@ -517,14 +592,25 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
     ++d.accepted;
     d.unshifted_tried = false;
     x.update(best_step, *direction, 1.0);
-    if (fresh) {
-      d.eta = best_step >= 1.0 ? 0.25 * d.eta : 2.0 * d.eta;
-      if (d.eta < 1e-9 * d.scale) d.eta = 0.0;
+    const double decrease = energy - best_energy;
+    if (jump_.refactor == JumpParameters::Refactor::cost) {
+      // The clocks differ by rank: any rank that would refactor decides for all.
+      int keep = fresh ? 1 : d.cost.keep(now() - iteration_began, decrease) ? 1 : 0;
+      if (fresh) d.cost.factored(now() - d.cycle_began, decrease);
+      Teuchos::reduceAll(comm, Teuchos::REDUCE_MIN, keep, Teuchos::outArg(keep));
+      if (keep) d.kept = 1;
+      else refactor();
+    } else if (fresh) {
       d.kept = jump_.reused_factors;
     } else {
       --d.kept;
     }
-    if (best_step < 0.5) d.kept = 0;   // a short step: the factors no longer fit the energy's curvature here
+    if (fresh) {
+      d.eta = best_step >= 1.0 ? 0.25 * d.eta : 2.0 * d.eta;
+      if (d.eta < 1e-9 * d.scale) d.eta = 0.0;
+    }
+    // refactor = count: a short step means the factors no longer fit the energy's curvature here
+    if (jump_.refactor == JumpParameters::Refactor::count && best_step < 0.5) d.kept = 0;
   }
   return std::nullopt;
 }
@@ -556,7 +642,7 @@ std::variant<int, std::string> LoadPath::descend(Vector& x)
       return reason.str();
     }
     confirmed->assign(x);
-    const auto plain = newton_.solve(*confirmed, nullptr);
+    const auto plain = newton_.solve(*confirmed, nullptr, true);   // the give-up rules: a hopeless try ends soon
     if (plain.converged) {
       x.assign(*confirmed);
       return d.iteration + (plain.iterations.empty() ? 0 : plain.iterations.back().iteration);

@@ -117,13 +117,38 @@ struct LoadPoint {
 // descent's outcome: one that releases no more than the tolerance stayed on the branch (Newton had stalled where
 // there was no limit point) and is recorded as an ordinary step, not as a jump.
 struct JumpParameters {
+  // When a descent replaces its factors (-M^-1 f is a descent direction for any positive definite M, so factors made
+  // at an earlier state still serve): count, after `reused_factors` further iterations (while each takes at least
+  // half its step); cost, by the measured rate (DescentCost).
+  enum class Refactor { count, cost };
+  static const std::vector<std::string>& refactor_names();
+
   int maximum_iterations = 500;
   double shift_growth = 4.0;      // eta factor while the shifted tangent is indefinite
-  // Consecutive descent iterations one positive definite factorization may serve after the one it was made for
-  // (while each takes at least half its step: -M^-1 f is a descent direction for any positive definite M); 0: a
-  // fresh factorization every iteration.
-  int reused_factors = 0;
+  Refactor refactor = Refactor::count;
+  int reused_factors = 0;         // refactor = count; 0: a fresh factorization every iteration
+  // After this many failed attempts in a row from one converged state, the energy descent is tried at the load of
+  // the last one: taken as an ordinary step if it releases no more than the step balance tolerance (a micro-snap of
+  // the peel front, which bisecting down to the smallest increment would reach only after many more failed
+  // attempts); otherwise the increments bisect towards it as before, and no early descent is tried again until the
+  // path has passed that load. 0: never (bisect to the smallest increment, then jump).
+  int descend_after_failures = 0;
   double step_balance_tolerance = 0.0;   // [nN nm, half model]; 0: not checked
+};
+
+// The cost rule of a descent's factors. A cycle is one factorization and the iterations its factors serve; its
+// yield is the decrease of Pi, its cost the wall time (the factorization and any indefinite tries before it
+// included). The factors serve the next iteration while the last one they served lowered Pi at least as fast per
+// second as the cycle has on average: the renewal rule, which keeps cheap solves with old factors where a
+// factorization is dear (a fine mesh) and refactors every iteration where it is cheap.
+class DescentCost {
+public:
+  void factored(double seconds, double decrease);   // a fresh iteration's: a new cycle
+  // A kept iteration's; true: the factors serve the next iteration too.
+  bool keep(double seconds, double decrease);
+
+private:
+  double seconds_ = 0.0, decrease_ = 0.0;
 };
 
 // Arc-length continuation (LOCA) in the controlled master, used to go round folds of the load path.
@@ -213,6 +238,9 @@ private:
                                           const Callback& on_point);
   void take_step(const Vector& state, const LoadPoint& point, double increment, const std::string& table,
                  const Callback& on_point);
+  // The early descent of JumpParameters::descend_after_failures: the state it reached at `load` and its measure, if
+  // it released no more than the step balance tolerance.
+  std::optional<LoadPoint> descend_early(Master controlled, double load, Vector& state);
   // The energy descent of a jump (LoadPath's comment above): iterations down to a small gradient, each with a line
   // search on Pi, then plain Newton to confirm; the iterations it took, or why it found no stable state.
   struct Descent;

@@ -74,53 +74,75 @@ double bisect(const std::function<double(double)>& f, double a, double b)
 
 }  // namespace
 
-// The lift to the fold and past it; the jump's energy descent with a fresh factorization every iteration or with
-// factors kept for up to `reused_factors` further iterations.
-static void expect_stop_at_the_fold_and_the_jumps_release(int reused_factors)
-{
-  const double side = 4.0;
+// The bar of the header on a 1 x 1 x 8 box mesh, its model and a load path with jumps past folds and the app's
+// step balance check (1e-4 of the contact energy A w_adh): the energy line search can carry a Newton attempt just
+// past the fold down to the far branch, which the check catches and cuts back.
+struct BarPath {
+  static constexpr double side = 4.0;
   AnalyticBar bar;
-  mesh::BoxParameters box;
-  box.lengths = {side, side, bar.height};
-  box.elements = {1, 1, 8};
-  const auto mesh = mesh::box_mesh(box);
-  discretization::Constraints constraints;
-  constraints.fixed.push_back({mesh.nodes(mesh::Boundary::symmetry), 1});
-  for (std::int64_t n = 0; n < mesh.node_count(); ++n)
-    if (mesh.coordinates[n][2] == bar.height) constraints.rigid_nodes.push_back(n);
-  constraints.rigid_centre = {0.5 * side, 0.0, bar.height};
-
-  contact::AdhesionSettings adhesion;
-  adhesion.law = "frictionless";
-  adhesion.enrichment = discretization::Enrichment::q1c1;
-  adhesion.quadrature = 2;
-  adhesion.lennard_jones.r_reg = 0.8 * adhesion.lennard_jones.equilibrium_gap();
-  adhesion.lennard_jones.r_cut = 10.0;   // exact law below 5 nm, where every state here lies
-  adhesion.substrate_height = -adhesion.lennard_jones.equilibrium_gap();
-  bar.law = adhesion.lennard_jones;
-  discretization::SolidParameters solid;
-  solid.young = 2.0 * bar.mu;
-  solid.poisson = 0.0;
-
-  auto comm = Teuchos::DefaultComm<int>::getComm();
-  const auto partition = mesh::partition_mesh(mesh, comm->getSize());
-  auto system = Teuchos::rcp(new discretization::DiscreteSystem(
-      mesh, partition, constraints, solid, comm, {adhesion.enrichment, contact::make_contact_model(adhesion)}));
-  solvers::LinearSolverFactory linear(solvers::LinearSolverParameters{});
-  auto model = Teuchos::rcp(new solvers::SpatulaModel(system, linear.lows_factory()));
-  solvers::NewtonSolver newton(model, solvers::NewtonParameters{}, linear);
-  analysis::LoadPath path(*model, newton, nullptr, false);
-  path.set_past_folds(analysis::LoadPath::PastFolds::jump);
-  // The app's step balance check (1e-4 of the contact energy A w_adh): the energy line search can carry a Newton
-  // attempt just past the fold down to the far branch, which the check catches and cuts back.
-  analysis::JumpParameters jump_parameters;
-  jump_parameters.step_balance_tolerance = 1e-4 * side * side * adhesion.lennard_jones.work_of_adhesion();
-  jump_parameters.reused_factors = reused_factors;
-  path.set_jump_parameters(jump_parameters);
+  Teuchos::RCP<discretization::DiscreteSystem> system;
+  std::unique_ptr<solvers::LinearSolverFactory> linear;
+  Teuchos::RCP<solvers::SpatulaModel> model;
+  std::unique_ptr<solvers::NewtonSolver> newton;
+  std::unique_ptr<analysis::LoadPath> path;
   analysis::StepParameters steps;
-  steps.initial = 0.2;
-  steps.maximum = 0.5;
-  steps.minimum = 1e-3;
+
+  BarPath(analysis::JumpParameters jump_parameters, const solvers::NewtonParameters& newton_parameters = {})
+  {
+    mesh::BoxParameters box;
+    box.lengths = {side, side, bar.height};
+    box.elements = {1, 1, 8};
+    const auto mesh = mesh::box_mesh(box);
+    discretization::Constraints constraints;
+    constraints.fixed.push_back({mesh.nodes(mesh::Boundary::symmetry), 1});
+    for (std::int64_t n = 0; n < mesh.node_count(); ++n)
+      if (mesh.coordinates[n][2] == bar.height) constraints.rigid_nodes.push_back(n);
+    constraints.rigid_centre = {0.5 * side, 0.0, bar.height};
+
+    contact::AdhesionSettings adhesion;
+    adhesion.law = "frictionless";
+    adhesion.enrichment = discretization::Enrichment::q1c1;
+    adhesion.quadrature = 2;
+    adhesion.lennard_jones.r_reg = 0.8 * adhesion.lennard_jones.equilibrium_gap();
+    adhesion.lennard_jones.r_cut = 10.0;   // exact law below 5 nm, where every state here lies
+    adhesion.substrate_height = -adhesion.lennard_jones.equilibrium_gap();
+    bar.law = adhesion.lennard_jones;
+    discretization::SolidParameters solid;
+    solid.young = 2.0 * bar.mu;
+    solid.poisson = 0.0;
+
+    auto comm = Teuchos::DefaultComm<int>::getComm();
+    const auto partition = mesh::partition_mesh(mesh, comm->getSize());
+    system = Teuchos::rcp(new discretization::DiscreteSystem(
+        mesh, partition, constraints, solid, comm, {adhesion.enrichment, contact::make_contact_model(adhesion)}));
+    linear = std::make_unique<solvers::LinearSolverFactory>(solvers::LinearSolverParameters{});
+    model = Teuchos::rcp(new solvers::SpatulaModel(system, linear->lows_factory()));
+    newton = std::make_unique<solvers::NewtonSolver>(model, newton_parameters, *linear);
+    path = std::make_unique<analysis::LoadPath>(*model, *newton, nullptr, false);
+    path->set_past_folds(analysis::LoadPath::PastFolds::jump);
+    jump_parameters.step_balance_tolerance = 1e-4 * side * side * adhesion.lennard_jones.work_of_adhesion();
+    path->set_jump_parameters(jump_parameters);
+    steps.initial = 0.2;
+    steps.maximum = 0.5;
+    steps.minimum = 1e-3;
+  }
+
+  std::optional<analysis::Failure> lift_to(double w)
+  {
+    return path->advance(discretization::Master::lift, w,
+                         analysis::LoadPath::spatula_control(discretization::Master::lift, false), steps, 1.0, {});
+  }
+};
+
+// The lift to the fold and past it; the jump's energy descent with a fresh factorization every iteration, with
+// factors kept for up to 'reused factors' further iterations, or kept by the cost rule; with early descents after
+// failed attempts, refused at the fold (the snap releases more than the step balance tolerance).
+static void expect_stop_at_the_fold_and_the_jumps_release(const analysis::JumpParameters& jump_parameters)
+{
+  BarPath bar_path(jump_parameters);
+  const auto& bar = bar_path.bar;
+  const auto& steps = bar_path.steps;
+  const double side = BarPath::side;
 
   // The analytic fold: between the strongest attraction (phi'' = 0) and the steepest fall of the attraction.
   const double strongest = bar.law.strongest_attraction_gap();
@@ -139,11 +161,9 @@ static void expect_stop_at_the_fold_and_the_jumps_release(int reused_factors)
   ASSERT_GT(w_fold, 2.0);   // the numbers the header describes: about 2.6 nm, 1.98 nN, 2.13 nN nm
   ASSERT_LT(w_fold, 3.0);
 
-  const auto failure = path.advance(discretization::Master::lift, w_fold + 1.0,
-                                    analysis::LoadPath::spatula_control(discretization::Master::lift, false), steps,
-                                    1.0, {});
+  const auto failure = bar_path.lift_to(w_fold + 1.0);
   ASSERT_FALSE(failure.has_value()) << failure->reason;
-  const auto& points = path.points();
+  const auto& points = bar_path.path->points();
   std::size_t jump = 0;
   for (std::size_t k = 1; k < points.size(); ++k)
     if (points[k].after_jump) {
@@ -164,20 +184,79 @@ static void expect_stop_at_the_fold_and_the_jumps_release(int reused_factors)
   for (std::size_t k = jump + 1; k < points.size(); ++k) EXPECT_FALSE(points[k].after_jump);
   // Every descent iteration with fresh factors solves once with them (an indefinite one not at all); kept factors
   // serve iterations without a factorization.
-  const auto* descents = path.descent_statistics();
+  const auto* descents = bar_path.path->descent_statistics();
   ASSERT_NE(descents, nullptr);
-  if (reused_factors == 0)
+  if (jump_parameters.refactor == analysis::JumpParameters::Refactor::cost)
+    EXPECT_GE(descents->factorizations, 1);
+  else if (jump_parameters.reused_factors == 0)
     EXPECT_LE(descents->solves, descents->factorizations);
   else
     EXPECT_GT(descents->solves, descents->factorizations) << "no descent iteration was served by kept factors";
 }
 
+analysis::JumpParameters jump_with(int reused_factors, analysis::JumpParameters::Refactor refactor,
+                                   int descend_after_failures = 0)
+{
+  analysis::JumpParameters parameters;
+  parameters.reused_factors = reused_factors;
+  parameters.refactor = refactor;
+  parameters.descend_after_failures = descend_after_failures;
+  return parameters;
+}
+
+constexpr auto count = analysis::JumpParameters::Refactor::count;
+
 TEST(PullOffFold, StepControllerStopsAtTheAnalyticFoldAndTheJumpReleasesItsEnergy)
 {
-  expect_stop_at_the_fold_and_the_jumps_release(0);
+  expect_stop_at_the_fold_and_the_jumps_release(jump_with(0, count));
 }
 
 TEST(PullOffFold, TheJumpWithReusedDescentFactorsReleasesTheSameEnergy)
 {
-  expect_stop_at_the_fold_and_the_jumps_release(8);
+  expect_stop_at_the_fold_and_the_jumps_release(jump_with(8, count));
+}
+
+TEST(PullOffFold, TheJumpWithCostRuledDescentFactorsReleasesTheSameEnergy)
+{
+  expect_stop_at_the_fold_and_the_jumps_release(jump_with(0, analysis::JumpParameters::Refactor::cost));
+}
+
+TEST(PullOffFold, AnEarlyDescentAtTheFoldIsRefusedAndTheFoldStillFound)
+{
+  expect_stop_at_the_fold_and_the_jumps_release(jump_with(0, count, 1));
+}
+
+// Newton allowed a single iteration fails the first steps on the smooth rising branch (no predictor yet); with
+// early descents after one failure those steps are the energy descent's at the load Newton failed, ordinary steps
+// (no energy released), instead of a bisection down to the smallest increment and a jump there; every state is the
+// analytic equilibrium at its lift.
+TEST(PullOffFold, EarlyDescentsTakeTheStepsNewtonFailsOnASmoothBranch)
+{
+  solvers::NewtonParameters one_iteration;
+  one_iteration.maximum_iterations = 1;
+  one_iteration.non_contracting_iterations = 0;
+  BarPath bar_path(jump_with(0, count, 1), one_iteration);
+  const double target = 1.5;   // nm, below the fold at about 2.6 nm
+  const auto failure = bar_path.lift_to(target);
+  ASSERT_FALSE(failure.has_value()) << failure->reason;
+  const auto& points = bar_path.path->points();
+  ASSERT_GE(points.size(), 4u);
+  EXPECT_NEAR(points[1].lift, bar_path.steps.initial, 1e-12);   // the first step, at the initial increment
+  EXPECT_NEAR(points.back().lift, target, 1e-12);
+  const auto& bar = bar_path.bar;
+  const double area = BarPath::side * BarPath::side;
+  const double g_fold = bisect([&](double g) { return bar.second_variation(g); }, bar.law.strongest_attraction_gap(),
+                               bar.law.r0 * std::pow(2.0, -1.0 / 6.0));
+  for (std::size_t k = 1; k < points.size(); ++k) {
+    EXPECT_FALSE(points[k].after_jump);
+    // The analytic pull at this lift: the gap g with w = (g - g_eq) + H (s(g) - 1), by bisection.
+    const double w = points[k].lift;
+    const double g = bisect([&](double gap) { return bar.lift(gap, bar.stretch_at(gap)) - w; },
+                            bar.law.equilibrium_gap(), g_fold);
+    EXPECT_NEAR(points[k].force, area * bar.derivative(g), 1e-5 * area * std::abs(bar.derivative(g)))
+        << "at the lift " << w;
+  }
+  const auto* descents = bar_path.path->descent_statistics();
+  ASSERT_NE(descents, nullptr);
+  EXPECT_GE(descents->solves, 1);
 }
