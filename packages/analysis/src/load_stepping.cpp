@@ -206,10 +206,12 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
       if (log_) *log_ << table.str() << "  step to " << name << " = " << load_text(load / unit) << " failed ("
                       << result.failure << ")";
       ++failures;
-      if (early_descent && jump_.descend_after_failures > 0 && failures >= jump_.descend_after_failures &&
-          past_folds_ == PastFolds::jump && jump_.step_balance_tolerance > 0.0) {
+      const bool descend = early_descent && jump_.descend_after_failures > 0 &&
+                           failures >= jump_.descend_after_failures && past_folds_ == PastFolds::jump &&
+                           jump_.step_balance_tolerance > 0.0;
+      if (descend) {
         if (log_) *log_ << "; energy descent at this load\n";
-        if (auto point = descend_early(controlled, load, *trial)) {
+        if (auto point = descend_early(controlled, load, *trial)) {   // an ordinary step after all
           value = load;
           failed.reached(value);
           failures = 0;
@@ -219,10 +221,8 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
           continue;
         }
         early_descent = false;   // a snap proper ahead: bisect towards it
-        if (log_) *log_ << "  cutting the increment\n";
-      } else if (log_) {
-        *log_ << "; cutting the increment\n";
       }
+      if (log_) *log_ << (descend ? "  " : "; ") << "cutting the increment\n";
       failed.failed(load);
       increment *= steps.cut;
       if (increment < smallest) {   // no equilibrium near the last one: past the fold, or stop
@@ -577,13 +577,19 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
     mumps.apply(*f, *direction);
     direction->scale(-1.0);
     double best_energy = energy;
-    const double best_step = descent_line_search(x, *direction, energy, f->dot(*direction), *trial, best_energy);
+    const double slope = f->dot(*direction);
+    const double best_step = descent_line_search(x, *direction, energy, slope, *trial, best_energy);
     d.row(tables_, fresh ? negative : -1, residual, best_step, best_energy);
     if (best_step == 0.0 && !fresh) {   // the kept factors are out of date: fresh ones at this state
       refactor();
       continue;
     }
-    if (best_step == 0.0 && d.eta == 0.0) return std::nullopt;   // no measurable decrease: let Newton finish
+    // A descent direction along which Pi does not measurably decrease: rounding; let Newton finish. But a direction
+    // that is not one (slope >= 0: the factors of a nearly singular tangent whose inertia showed no negative pivot
+    // lost it to rounding) is shifted like an indefinite tangent.
+    if (best_step == 0.0 && d.eta == 0.0 && slope < 0.0) return std::nullopt;
+    if (best_step == 0.0 && slope >= 0.0 && tables_)
+      d.table << "  descent  (not a descent direction: slope " << slope << " nN nm; shifting the tangent)\n";
     if (best_step == 0.0) {   // no decrease along this direction: stiffen the shift
       ++d.no_decrease;
       d.eta = d.eta == 0.0 ? 1e-6 * d.scale : jump_.shift_growth * d.eta;
