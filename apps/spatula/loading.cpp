@@ -69,9 +69,9 @@ void LoadingParameters::declare(Teuchos::ParameterList& loading)
   parameters::declare_string(jump, "refactor",
                              parameters::name_of(d.jump.refactor, analysis::JumpParameters::refactor_names()),
                              "when a descent replaces its factors: count (after 'reused factors' further iterations) "
-                             "or cost (once the last iteration the kept factors served lowered the energy more "
-                             "slowly per second than their cycle has on average, factorization included; 'reused "
-                             "factors' is then not used)", analysis::JumpParameters::refactor_names());
+                             "or cost (fresh factors serve one more iteration, then more while the last one lowered "
+                             "the energy at least as fast per second as their cycle has on average, factorization "
+                             "included; 'reused factors' is then not used)", analysis::JumpParameters::refactor_names());
   parameters::declare_int(jump, "reused factors", d.jump.reused_factors,
                           "refactor = count: descent iterations one positive definite factorization may serve after "
                           "its own (while each takes at least half its step); 0: a fresh factorization every "
@@ -80,7 +80,8 @@ void LoadingParameters::declare(Teuchos::ParameterList& loading)
                           "after this many failed step attempts in a row, try the energy descent at the last "
                           "failed load: an ordinary step if it releases no more than the step balance tolerance (a "
                           "small snap of the peel front), else bisect towards that load as before and try no early "
-                          "descent until it is passed; 0: never (bisect to the smallest increment, then jump)",
+                          "descent until it is passed; only with 'past instabilities' = jump and a positive 'step "
+                          "balance tolerance'; 0: never (bisect to the smallest increment, then jump)",
                           Range::closed(0, 100));
   parameters::declare_double(jump, "step balance tolerance", d.step_balance_tolerance,
                              "largest energy released by one converged load step, over Pi_c0: a step releasing more "

@@ -194,8 +194,9 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
     resumed_control_.reset();
   }
   const double smallest = steps.minimum * unit * (1 - 1e-12);
-  int failures = 0;            // failed attempts in a row from the current converged state
-  bool early_descent = true;   // no early descent was refused since the path last passed a failed load
+  int failures = 0;                    // failed attempts in a row from the current converged state
+  bool refused = false;                // an early descent was refused at refused_load, not yet passed
+  double refused_load = 0.0;
   while (!detached_ && direction * (target - value) > 1e-12 * std::max(1.0, std::abs(target))) {
     increment = failed.limit(std::min(increment, direction * (target - value)), value);
     const double load = value + direction * increment;
@@ -206,9 +207,10 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
       if (log_) *log_ << table.str() << "  step to " << name << " = " << load_text(load / unit) << " failed ("
                       << result.failure << ")";
       ++failures;
-      const bool descend = early_descent && jump_.descend_after_failures > 0 &&
-                           failures >= jump_.descend_after_failures && past_folds_ == PastFolds::jump &&
-                           jump_.step_balance_tolerance > 0.0;
+      // Not where the cut leaves the smallest increment: the jump there descends from the same state anyway.
+      const bool descend = !refused && jump_.descend_after_failures > 0 && failures >= jump_.descend_after_failures &&
+                           past_folds_ == PastFolds::jump && jump_.step_balance_tolerance > 0.0 &&
+                           increment * steps.cut >= smallest;
       if (descend) {
         if (log_) *log_ << "; energy descent at this load\n";
         if (auto point = descend_early(controlled, load, *trial)) {   // an ordinary step after all
@@ -220,7 +222,8 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
           take_step(*trial, *point, increment, "", on_point);
           continue;
         }
-        early_descent = false;   // a snap proper ahead: bisect towards it
+        refused = true;   // a snap proper ahead (or no state the descent could confirm): bisect towards it
+        refused_load = load;
       }
       if (log_) *log_ << (descend ? "  " : "; ") << "cutting the increment\n";
       failed.failed(load);
@@ -233,7 +236,7 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
         value = std::get<double>(beyond);
         failed.forget();
         failures = 0;
-        early_descent = true;
+        refused = false;
         increment = steps.initial * unit;   // on a new branch: accept() has started the predictor afresh
       }
       if (!steps.predict_after_failure) previous_increment_ = older_increment_ = 0.0;
@@ -274,7 +277,8 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
     value += direction * increment;
     failed.reached(value);
     failures = 0;
-    if (!failed.known()) early_descent = true;
+    if (refused && direction * (value - refused_load) >= -1e-12 * std::max(1.0, std::abs(refused_load)))
+      refused = false;
     if (iterations <= steps.easy_iterations) increment = std::min(increment * steps.growth, steps.maximum * unit);
     point.step_control.increment = increment;
     failed.save(point.step_control);
@@ -377,6 +381,7 @@ void LoadPath::take_step(const Vector& state, const LoadPoint& point, double inc
 std::optional<LoadPoint> LoadPath::descend_early(Master controlled, double load, Vector& state)
 {
   Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: early energy descent"));
+  ++early_descents_.tried;
   state.assign(*x_);
   model_.system().set_master(state, controlled, load);
   const auto outcome = descend(state);
@@ -391,6 +396,7 @@ std::optional<LoadPoint> LoadPath::descend_early(Master controlled, double load,
                     << "the step balance tolerance: a snap proper\n";
     return std::nullopt;
   }
+  ++early_descents_.taken;
   if (log_) *log_ << "  the descent reached a state on this branch in " << std::get<int>(outcome)
                   << " iterations (released " << load_text(2.0 * released) << " nN nm, full spatula): an ordinary step\n";
   return point;
@@ -531,6 +537,7 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
     d.kept = 0;
     d.cycle_began = now();
   };
+  d.cycle_began = now();   // a cycle is not charged with the confirming Newton between two calls
   for (; d.iteration < jump_.maximum_iterations; ++d.iteration) {
     const double iteration_began = now();
     // Kept factors (of a positive definite shifted tangent at an earlier state) still give a descent direction
@@ -581,6 +588,7 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
     const double best_step = descent_line_search(x, *direction, energy, slope, *trial, best_energy);
     d.row(tables_, fresh ? negative : -1, residual, best_step, best_energy);
     if (best_step == 0.0 && !fresh) {   // the kept factors are out of date: fresh ones at this state
+      d.cost.keep(now() - iteration_began, 0.0);   // (their cycle's last, fruitless iteration)
       refactor();
       continue;
     }

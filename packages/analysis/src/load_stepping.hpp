@@ -131,16 +131,19 @@ struct JumpParameters {
   // the last one: taken as an ordinary step if it releases no more than the step balance tolerance (a micro-snap of
   // the peel front, which bisecting down to the smallest increment would reach only after many more failed
   // attempts); otherwise the increments bisect towards it as before, and no early descent is tried again until the
-  // path has passed that load. 0: never (bisect to the smallest increment, then jump).
+  // path has passed that load (a resumed run forgets a refusal). Only with jumps past folds and a step balance
+  // tolerance, and not where the cut would leave the smallest increment (the jump descends there anyway).
+  // 0: never (bisect to the smallest increment, then jump).
   int descend_after_failures = 0;
   double step_balance_tolerance = 0.0;   // [nN nm, half model]; 0: not checked
 };
 
 // The cost rule of a descent's factors. A cycle is one factorization and the iterations its factors serve; its
 // yield is the decrease of Pi, its cost the wall time (the factorization and any indefinite tries before it
-// included). The factors serve the next iteration while the last one they served lowered Pi at least as fast per
-// second as the cycle has on average: the renewal rule, which keeps cheap solves with old factors where a
-// factorization is dear (a fine mesh) and refactors every iteration where it is cheap.
+// included). Fresh factors always serve one kept iteration (its yield is unknown until tried); after that the factors
+// serve the next iteration while the last one they served lowered Pi at least as fast per second as the cycle has
+// on average: the renewal rule, which keeps cheap solves with old factors where a factorization is dear (a fine mesh)
+// and ends each cycle after that one kept iteration where it is cheap.
 class DescentCost {
 public:
   void factored(double seconds, double decrease);   // a fresh iteration's: a new cycle
@@ -206,6 +209,11 @@ public:
   // The detachment test that ends a path cleanly.
   void set_detachment_test(std::function<bool(const LoadPoint&)> test) { detachment_test_ = std::move(test); }
   bool detached() const { return detached_; }
+  // Early descents (JumpParameters::descend_after_failures) tried, and taken as ordinary steps.
+  struct EarlyDescents {
+    int tried = 0, taken = 0;
+  };
+  const EarlyDescents& early_descents() const { return early_descents_; }
   // The factorizations of the jumps' energy descents (null before the first descent).
   const solvers::MumpsStatistics* descent_statistics() const
   {
@@ -268,6 +276,7 @@ private:
   std::unique_ptr<solvers::MumpsSolver> descent_solver_;   // LDL^T of the descents: one analysis for the whole path
   std::function<bool(const LoadPoint&)> detachment_test_;
   bool detached_ = false;
+  EarlyDescents early_descents_;
 };
 
 }  // namespace spatula::analysis
