@@ -476,7 +476,7 @@ struct LoadPath::Descent {
   bool unshifted_tried = false;   // at the current state, with a small gradient
   int kept = 0;                   // further iterations the current (positive definite) factors may serve
   DescentCost cost;               // refactor = cost: the current factors' cycle
-  double cycle_began = now();     // when fresh factors were last asked for
+  double cycle_began = 0.0;       // when fresh factors were last asked for (set as each descent call begins)
   double residual = 0.0;          // |f| at the last iteration [nN]
   std::ostringstream table;
 
@@ -607,10 +607,12 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
     d.unshifted_tried = false;
     x.update(best_step, *direction, 1.0);
     const double decrease = energy - best_energy;
-    if (jump_.refactor == JumpParameters::Refactor::cost) {
+    if (jump_.refactor == JumpParameters::Refactor::cost && fresh) {   // a new cycle: one kept iteration at least
+      d.cost.factored(now() - d.cycle_began, decrease);
+      d.kept = 1;
+    } else if (jump_.refactor == JumpParameters::Refactor::cost) {
       // The clocks differ by rank: any rank that would refactor decides for all.
-      int keep = fresh ? 1 : d.cost.keep(now() - iteration_began, decrease) ? 1 : 0;
-      if (fresh) d.cost.factored(now() - d.cycle_began, decrease);
+      int keep = d.cost.keep(now() - iteration_began, decrease) ? 1 : 0;
       Teuchos::reduceAll(comm, Teuchos::REDUCE_MIN, keep, Teuchos::outArg(keep));
       if (keep) d.kept = 1;
       else refactor();
