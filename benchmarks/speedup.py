@@ -20,6 +20,16 @@ iterations' = 0; 'after' is today's defaults):
                           after = ours with today's defaults; also the whole scene's Newton time of each. Needs
                           python3-dolfinx; skipped with a note without it.
 
+  medium-table6-study     Table 6 as scripts/run-study.py runs it on the medium mesh, both cores (two runs at once, one
+                          rank each): the rotation to 90 deg with checkpoints at 45, 60, 75 and 90 deg, and the four
+                          pull-offs from them, each started as soon as its checkpoint exists: wall seconds of the
+                          whole study, tangents, and the largest change of P_max, Delta u_z and Delta Pi_ext over the
+                          four pull-offs. before = the study's scenes as they were at 0f7a416 (lift steps up to 5 nm,
+                          grown after 7 iterations, 12 iterations per attempt) with the old solver settings; after =
+                          the study's scenes as they are. Each half goes on from its checkpoints when a call of the
+                          case is stopped (its wall time is then summed over the calls, a stopped call counted to its
+                          last log write); the row is written once both halves are complete. --level coarse runs
+                          it on the coarse mesh, a quick check of the script (no row is written then).
   fine-pull-off-60        the fine-mesh (the paper's) frictionless Q1C2 pull-off at 60 deg on 2 ranks with the
                           after scene's settings and Loading/Jump/refactor = cost (a fine factorization is dear):
                           rotation to 60 deg with zero net force (checkpoints at 30, 45 and
@@ -29,11 +39,11 @@ iterations' = 0; 'after' is today's defaults):
                           segments (a segment a session killed counts to its last logged step); its row is written
                           once the run has finished, with P_max, Delta u_z and Delta Pi_ext.
 
-    benchmarks/speedup.py [--cases fine-newton-iteration medium-pull-off-45 peer-medium-iteration fine-pull-off-60]
-                          [--work DIR] [--docs]
+    benchmarks/speedup.py [--cases fine-newton-iteration medium-pull-off-45 peer-medium-iteration
+                                   medium-table6-study fine-pull-off-60] [--work DIR] [--docs] [--level LEVEL]
 
 Run it on a quiet machine (nothing else on the two cores): the default cases take about an hour, most of it the
-medium pull-off before the change; fine-pull-off-60 is asked for by name. With --docs the rows of the cases run replace theirs in docs/speedup.csv (each row carries the
+medium pull-off before the change; medium-table6-study (about 2 hours) and fine-pull-off-60 are asked for by name. With --docs the rows of the cases run replace theirs in docs/speedup.csv (each row carries the
 date it was measured); the before/after pair of each row always comes from one run.
 """
 import argparse
@@ -132,6 +142,78 @@ def medium_pull_off_45(work):
                  before_counts=counts.format(**before), after_counts=counts.format(**after))]
 
 
+def flattened(options, prefix=''):
+    """A scene's option dict as run-study.py --set entries ('List/Sublist/name=value')."""
+    out = []
+    for key, value in options.items():
+        if isinstance(value, dict):
+            out += flattened(value, prefix + key + '/')
+        else:
+            out.append(prefix + key + '=' + (f'{value!r}' if isinstance(value, float) else str(value)))
+    return out
+
+
+TABLE6_ANGLES = (45, 60, 75, 90)
+# The rotation stops at the last pre-rotated state Table 6 needs (the study's own goes on to detachment for Table 4).
+TABLE6_ROTATION = ['peel-rotation:Loading/theta_y=90.0', 'peel-rotation:Loading/checkpoints at theta_y=45,60,75,90']
+# The study's pull-off scenes at 0f7a416: lift steps up to 5 nm, grown after at most 7 iterations, 12 per attempt.
+OLD_TABLE6_LIFT = ['Loading/Lift Steps/maximum=5.0', 'Loading/Lift Steps/easy iterations=7',
+                   'Nonlinear Solver/maximum iterations=12']
+
+
+def table6_half(work, label, settings, level):
+    """One half of medium-table6-study: run-study.py table6 with `settings` (--set entries) in <work>/table6-<label>,
+    resumed from its checkpoints if an earlier call was stopped; returns its totals and the pull-offs' results."""
+    directory = os.path.join(work, f'table6-{label}')
+    segments = directory + '.segments'
+    command = [sys.executable, os.path.join(ROOT, 'scripts', 'run-study.py'), 'table6', '--mesh', level,
+               '--work', directory, '--jobs', '2'] + [f'--set={entry}' for entry in settings]
+    with open(segments, 'a') as out:
+        out.write(f'start {time.time():.1f}\n')
+    with open(directory + '.log', 'a') as log:
+        status = subprocess.call(command, stdout=log, stderr=subprocess.STDOUT, env=dict(ENVIRONMENT, SPATULA_APP=APP))
+    with open(segments, 'a') as out:
+        out.write(f'end {time.time():.1f}\n')
+    if status != 0:
+        sys.exit(f'medium-table6-study, {label}: run-study.py exit {status} (see {directory}.log)')
+    runs = os.path.join(directory, level)
+    logs = [os.path.join(runs, name) for name in os.listdir(runs) if name.endswith('.log')]
+    wall, start = 0.0, None
+    for kind, stamp in (line.split() for line in open(segments)):
+        if kind == 'start':
+            if start is not None:   # a call that was stopped: counted to the last log write after its start
+                wall += max([os.path.getmtime(l) for l in logs if os.path.getmtime(l) > start], default=start) - start
+            start = float(stamp)
+        else:
+            wall, start = wall + float(stamp) - start, None
+    tangents = {os.path.basename(l)[:-4]: sum(int(t) for t in re.findall(r'^solver: (\d+) tangents', open(l).read(),
+                                                                         re.M)) for l in logs}
+    results = {angle: pull_off_summary(runs, f'pull-off-{angle}') for angle in TABLE6_ANGLES}
+    print(f"medium-table6-study, {label}: {wall:.0f} s wall, {sum(tangents.values())} tangents, P_max "
+          + ' / '.join(f"{results[a]['P_max_nN']:.3f}" for a in TABLE6_ANGLES) + ' nN', flush=True)
+    return dict(wall_s=wall, tangents=sum(tangents.values()), rotation_tangents=tangents['peel-rotation'],
+                results=results)
+
+
+def medium_table6_study(work, level):
+    solvers = {k: v for k, v in OLD_SCENE.items() if k != 'Steps'}   # 'Steps' holds entries of both step lists
+    steps = [f'peel-rotation:Loading/Rotation Steps/{entry}' for entry in flattened(OLD_SCENE['Steps'])]
+    steps += [f'pull-off-{a}:{entry}' for a in TABLE6_ANGLES for entry in
+              OLD_TABLE6_LIFT + [f'Loading/Lift Steps/{e}' for e in flattened(OLD_SCENE['Steps'])]]
+    before = table6_half(work, 'before', flattened(solvers) + TABLE6_ROTATION + steps, level)
+    after = table6_half(work, 'after', TABLE6_ROTATION, level)
+    change = max(abs(after['results'][a][q] / before['results'][a][q] - 1) * 100
+                 for a in TABLE6_ANGLES for q in QUANTITIES)
+    def counts(half):
+        return (f"wall {half['wall_s']:.0f} s, {half['tangents']} tangents (rotation to 90 deg {half['rotation_tangents']}), "
+                'P_max ' + ' / '.join(f"{half['results'][a]['P_max_nN']:.3f}" for a in TABLE6_ANGLES) +
+                ' nN at ' + '/'.join(str(a) for a in TABLE6_ANGLES) + ' deg')
+    return [dict(case='medium-table6-study' + ('' if level == 'medium' else f'-{level}'),
+                 before_s=round(before['wall_s'], 1), after_s=round(after['wall_s'], 1),
+                 ratio=round(before['wall_s'] / after['wall_s'], 2), max_result_change_pct=round(change, 4),
+                 before_counts=counts(before), after_counts=counts(after))]
+
+
 FINE_60 = 'fine-60'
 
 
@@ -204,16 +286,20 @@ def peer_medium_iteration(work):
 
 
 CASE_ROWS = ['medium-pull-off-45', 'fine-newton-iteration', 'fine-newton-iteration-fresh-factors',
-             'peer-medium-iteration', 'fine-pull-off-60']
+             'peer-medium-iteration', 'medium-table6-study', 'fine-pull-off-60']
 
 
 def main():
     cases = ['fine-newton-iteration', 'medium-pull-off-45', 'peer-medium-iteration']   # the hour-long default
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument('--cases', nargs='*', default=cases, choices=cases + ['fine-pull-off-60'])
+    parser.add_argument('--cases', nargs='*', default=cases, choices=cases + ['medium-table6-study', 'fine-pull-off-60'])
     parser.add_argument('--work', default='speedup')
     parser.add_argument('--docs', action='store_true')
+    parser.add_argument('--level', default='medium', choices=['coarse', 'medium'],
+                        help='the mesh of medium-table6-study (coarse: a quick check of the script, no docs row)')
     arguments = parser.parse_args()
+    if arguments.docs and arguments.level != 'medium':
+        parser.error('--docs takes the medium mesh only')
     work = os.path.abspath(arguments.work)
     os.makedirs(work, exist_ok=True)
     rows = []
@@ -224,6 +310,8 @@ def main():
             rows += medium_pull_off_45(work)
         elif case == 'fine-pull-off-60':
             rows += fine_pull_off_60(work)
+        elif case == 'medium-table6-study':
+            rows += medium_table6_study(work, arguments.level)
         else:
             rows += peer_medium_iteration(work)
     print('\n| case | before [s] | after [s] | ratio | largest result change [%] | before | after |')

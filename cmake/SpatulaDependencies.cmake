@@ -46,6 +46,22 @@ spatula_trilinos_target(Kokkos Kokkos Teuchos)
 spatula_trilinos_target(Tpetra Tpetra Kokkos Teuchos)
 spatula_trilinos_target(Solvers NOX Stratimikos Belos Ifpack2 MueLu Thyra Tpetra Kokkos Teuchos)
 
+# A Trilinos built with Kokkos' OpenMP backend (scripts/build-trilinos.sh) needs -fopenmp on every file that includes
+# Kokkos: read the backend from Kokkos' own configuration header (Debian's Trilinos is Serial only).
+find_file(SPATULA_KOKKOS_CONFIG_HEADER KokkosCore_config.h PATHS ${Kokkos_INCLUDE_DIRS} NO_DEFAULT_PATH)
+if(SPATULA_KOKKOS_CONFIG_HEADER)
+  file(STRINGS "${SPATULA_KOKKOS_CONFIG_HEADER}" SPATULA_KOKKOS_OPENMP REGEX "^#define KOKKOS_ENABLE_OPENMP")
+  if(SPATULA_KOKKOS_OPENMP)
+    find_package(OpenMP REQUIRED COMPONENTS CXX)
+    foreach(target Kokkos Tpetra Solvers)
+      set_property(TARGET Spatula::${target} APPEND PROPERTY INTERFACE_LINK_LIBRARIES OpenMP::OpenMP_CXX)
+    endforeach()
+    message(STATUS "Kokkos backend: OpenMP (threads per rank: OMP_NUM_THREADS)")
+  else()
+    message(STATUS "Kokkos backend: Serial")
+  endif()
+endif()
+
 # MUMPS (distributed direct solver): Trilinos links it as a TPL; the headers are plain Debian ones.
 find_path(MUMPS_INCLUDE_DIR dmumps_c.h)
 find_library(MUMPS_LIBRARY dmumps)

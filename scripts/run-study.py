@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Runs the paper's studies (the scenes in xml/studies/) and writes their tables and figures.
 
-    scripts/run-study.py <study> [--jobs 2] [--work DIR] [--mesh LEVEL] [--docs]
+    scripts/run-study.py <study> [--jobs 2] [--work DIR] [--mesh LEVEL] [--docs] [--set [SCENE:]LIST/NAME=VALUE ...]
 
 studies: table4 (peel by rotation), table6 (pull-off at 45/60/75/90 deg, also Table 5), stiction, gamma-W (Table 7),
 gamma-L (Table 8), rough (Fig. 14), all. Runs use one MPI rank each, `--jobs` of them at once (both cores by default); pull-offs
@@ -19,6 +19,12 @@ pull-offs) run on the coarse mesh unless `--mesh` says otherwise: on the medium 
 on the coarse one about 3. `--mesh LEVEL` runs every
 scene of the study on LEVEL. A run's scene file is the study XML with the level replaced, written beside its output.
 
+Other settings: `--set 'Linear Solver/refactor=lag'` sets a parameter in every scene of the study (sublists and
+parameters are added where missing; a new parameter's type is read from its value: true/false, an integer, a
+number, else a string), `--set peel-rotation:Loading/theta_y=90` in one scene only. Such runs are not the study's
+own: they are not restored from or kept in docs/study-runs, and --docs is refused (benchmarks/speedup.py runs Table 6
+this way with the settings from before issue 15).
+
 Results: <work>/<level>/<scene>/ per run, <work>/<level>/tables/*.csv and *.md, and with --docs docs/validation.md
 and its PNGs. Needs a build (build/apps/spatula/spatula). Runs already complete in <work> are not repeated. Each
 complete run's curve, scene, log (and a rotation's checkpoints) are kept in docs/study-runs/<level>/<scene>/ (commit
@@ -33,6 +39,7 @@ import signal
 import subprocess
 import sys
 import time
+from xml.etree import ElementTree
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from convergence import ASSUMED_ORDER, LEVELS, richardson  # noqa: E402
@@ -62,10 +69,65 @@ STICTION_RUNS = (('pull-off-60', 'frictionless', False),
 STUDY_LEVEL = {'gamma-W': 'coarse', 'gamma-L': 'coarse'}
 
 
+# Parameters set on the command line (--set), applied to every scene file a run reads: (scene or None for every
+# scene, sublist path, parameter name, value as text).
+OVERRIDES = []
+
+
+def parse_override(text):
+    """'[SCENE:]List/Sublist/name=value' -> (scene or None, ['List', 'Sublist'], 'name', 'value')."""
+    match = re.fullmatch(r'(?:([\w.-]+):)?([^=:]+)=(.*)', text)
+    if not match or '/' not in match.group(2):
+        raise argparse.ArgumentTypeError(f"--set '{text}': expected [SCENE:]List/.../name=value, e.g. "
+                                         "'Linear Solver/lag=4' or 'peel-rotation:Loading/theta_y=90'")
+    *path, name = match.group(2).split('/')
+    return match.group(1), path, name, match.group(3)
+
+
+def parameter_type(value):
+    """The Teuchos type a new parameter's text asks for: bool, int, double, else string."""
+    if value in ('true', 'false'):
+        return 'bool'
+    if re.fullmatch(r'[-+]?\d+', value):
+        return 'int'
+    try:
+        float(value)
+        return 'double'
+    except ValueError:
+        return 'string'
+
+
+def apply_overrides(text, scene, overrides):
+    """The scene XML with the overrides that concern it set (an existing parameter keeps its type; a missing one,
+    and the sublists on its path, are added)."""
+    mine = [o for o in overrides if o[0] in (None, scene)]
+    if not mine:
+        return text
+    root = ElementTree.fromstring(text, parser=ElementTree.XMLParser(target=ElementTree.TreeBuilder(
+        insert_comments=True)))
+    for _, path, name, value in mine:
+        node = root
+        for sublist in path:
+            child = next((c for c in node.findall('ParameterList') if c.get('name') == sublist), None)
+            node = child if child is not None else ElementTree.SubElement(node, 'ParameterList', name=sublist)
+        parameter = next((c for c in node.findall('Parameter') if c.get('name') == name), None)
+        if parameter is None:
+            parameter = ElementTree.SubElement(node, 'Parameter', name=name, type=parameter_type(value))
+        parameter.set('value', value)
+    ElementTree.indent(root)
+    return ElementTree.tostring(root, encoding='unicode') + '\n'
+
+
+@functools.lru_cache(maxsize=None)
+def scene_text(scene):
+    """xml/studies/<scene>.xml with the command line's --set entries applied."""
+    return apply_overrides(open(os.path.join(SCENES, scene + '.xml')).read(), scene, OVERRIDES)
+
+
 @functools.lru_cache(maxsize=None)
 def scene_parameter(scene, name):
-    """The value (as text) of parameter `name` in xml/studies/<scene>.xml, or None."""
-    match = re.search(rf'name="{name}" type="\w+" value="([^"]*)"', open(os.path.join(SCENES, scene + '.xml')).read())
+    """The value (as text) of parameter `name` in the scene (after --set), or None."""
+    match = re.search(rf'name="{name}" type="\w+" value="([^"]*)"', scene_text(scene))
     return match.group(1) if match else None
 
 
@@ -88,10 +150,10 @@ def planned_runs(study, forced_level):
 def scene_file(work, level, scene):
     """The study XML at the given mesh level, written to <work>/<scene>.xml (a pull-off reads its copy of the
     rotation's checkpoints, <scene>.restart.h5)."""
-    text = open(os.path.join(SCENES, scene + '.xml')).read()
-    text = re.sub(r'(name="level" type="string" value=")\w+(")', r'\g<1>' + level + r'\2', text)
+    placement = [(scene, ['Mesh'], 'level', level)]
     if scene in DEPENDS:
-        text = re.sub(r'(name="restart file" type="string" value=")[^"]*(")', r'\g<1>' + scene + r'.restart.h5\2', text)
+        placement.append((scene, ['Loading'], 'restart file', scene + '.restart.h5'))
+    text = apply_overrides(scene_text(scene), scene, placement)
     path = os.path.join(work, scene + '.xml')
     open(path, 'w').write(text)
     return path
@@ -114,6 +176,7 @@ def complete(work, scene):
 # work directory (a new machine, a cleaned disk): its curve, scene, mesh summary and log, and the checkpoints of a
 # rotation that pull-offs start from. A later study restores them into the work directory instead of running again.
 ARCHIVE = os.path.join(ROOT, 'docs', 'study-runs')
+ARCHIVING = [True]   # off when --set changed the scenes: their runs are not the study's
 KEPT_FILES = ('curve.csv', 'scene.xml', 'mesh_summary.csv', 'mesh_summary.txt', '.spatula-output')
 
 
@@ -238,7 +301,7 @@ def step_lines(log):
 def run_all(runs, work, jobs):
     """Runs the (level, scene) pairs not yet complete in <work>/<level>, `jobs` at a time (a stopped one resumed from
     its last checkpoint); returns the failed ones."""
-    for level, scene in restore(work, runs):
+    for level, scene in restore(work, runs) if ARCHIVING[0] else []:
         print(f'[{level} {scene}] restored from {os.path.relpath(ARCHIVE, ROOT)}/ (complete)', flush=True)
     pending = [r for r in runs if not complete(os.path.join(work, r[0]), r[1])]
     running = {}
@@ -300,7 +363,7 @@ def run_all(runs, work, jobs):
                 print(f'[{level} {scene}] {status} after {time.time() - started:.0f} s', flush=True)
                 if process.returncode != 0:
                     failed.append(run)
-                elif complete(os.path.join(work, level), scene):
+                elif ARCHIVING[0] and complete(os.path.join(work, level), scene):
                     archive(work, level, scene)
                 del running[run]
     return failed
@@ -669,15 +732,22 @@ def main():
     parser.add_argument('--mesh', choices=LEVELS, help='run every scene of the study on this mesh level')
     parser.add_argument('--docs', action='store_true', help='write docs/validation.md and its figures')
     parser.add_argument('--no-run', action='store_true', help='only tabulate (and with --docs, document) the runs present')
+    parser.add_argument('--set', action='append', type=parse_override, default=[], metavar='[SCENE:]LIST/NAME=VALUE',
+                        help="set a parameter in every scene (or in SCENE's only), e.g. --set 'Linear Solver/lag=4'; "
+                             'such runs are neither restored from nor kept in docs/study-runs, and --docs is refused')
     arguments = parser.parse_args()
+    if arguments.set and arguments.docs:
+        parser.error('--docs documents the study scenes as written: it cannot be combined with --set')
+    OVERRIDES.extend(arguments.set)
+    ARCHIVING[0] = not arguments.set
     if not os.path.exists(APP):
         sys.exit(f'{APP} not found: build first (bash scripts/build.sh)')
     runs = planned_runs(arguments.study, arguments.mesh)
     started = time.time()
-    for level, scene in runs:   # complete runs of an earlier study not yet kept (and with --no-run, the kept ones)
+    for level, scene in runs if ARCHIVING[0] else []:   # complete runs of an earlier study not yet kept
         if complete(os.path.join(arguments.work, level), scene) and not complete(os.path.join(ARCHIVE, level), scene):
             archive(arguments.work, level, scene)
-    if arguments.no_run:   # tabulate every kept run, at every level
+    if arguments.no_run and ARCHIVING[0]:   # with --no-run, tabulate every kept run, at every level
         restore(arguments.work, [(level, scene) for level in LEVELS if os.path.isdir(os.path.join(ARCHIVE, level))
                                  for scene in sorted(os.listdir(os.path.join(ARCHIVE, level)))])
     failed = [] if arguments.no_run else run_all(runs, arguments.work, arguments.jobs)

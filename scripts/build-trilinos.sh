@@ -1,0 +1,134 @@
+#!/usr/bin/env bash
+# Builds Trilinos 13.2 from Debian's source package with a threaded Kokkos backend (OpenMP; with --cuda also CUDA),
+# only the packages this project links, into a prefix that later builds of the project reuse:
+#
+#   bash scripts/build-trilinos.sh [--prefix DIR] [--work DIR] [--jobs N] [--cuda] [--configure-only] [--force]
+#   cmake -S . -B build-openmp -DTrilinos_DIR=<prefix>/lib/cmake/Trilinos && cmake --build build-openmp -j2
+#
+# Defaults: prefix /opt/trilinos-13.2-openmp (-openmp-cuda with --cuda), work directory /opt/trilinos-build (source, build tree, ccache), all
+# cores. It installs what it needs with apt-get (ninja, ccache, dpkg-dev, compilers, MPI, BLAS/LAPACK, MUMPS, HDF5),
+# adds a deb-src line for bookworm main if there is none, and fetches the source with `apt-get source trilinos`
+# (Debian's patches applied). A build that is stopped goes on where it stopped when the script is run again (Ninja
+# and ccache keep the work); an installed prefix is left alone unless --force. Progress: a line per 2 % of the build
+# steps with the elapsed time; the total time at the end (also in <prefix>/BUILD-INFO.txt).
+#
+# Packages: Teuchos, Kokkos, KokkosKernels, Tpetra, Thyra, Stratimikos, NOX with LOCA, Belos, Ifpack2, MueLu and
+# Amesos2 (and what they require), MPI on, shared libraries, Release, no tests or examples. Kokkos: Serial and OpenMP,
+# Tpetra instantiated for both (the OpenMP node is the default one), so the project's kernels run threaded with
+# OMP_NUM_THREADS threads per rank. --cuda (nvcc on PATH, and KOKKOS_ARCH naming the GPU, e.g. KOKKOS_ARCH=AMPERE80)
+# sets Kokkos_ENABLE_CUDA as well, with Kokkos' nvcc_wrapper as the compiler, into its own prefix. Trilinos 13.2
+# carries Kokkos 3.4, which knows CUDA toolkits up to 11.x: a newer toolkit (this machine has CUDA 13.0 in
+# /usr/local/cuda) is expected to fail, which is why CUDA is asked for, not detected.
+set -euo pipefail
+
+PREFIX=
+WORK=/opt/trilinos-build
+JOBS=$(nproc)
+CUDA=off
+FORCE=0
+CONFIGURE_ONLY=0
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --prefix) PREFIX=$2; shift 2 ;;
+    --work) WORK=$2; shift 2 ;;
+    --jobs) JOBS=$2; shift 2 ;;
+    --cuda) CUDA=on; shift ;;
+    --force) FORCE=1; shift ;;
+    --configure-only) CONFIGURE_ONLY=1; shift ;;
+    -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
+    *) echo "build-trilinos.sh: unknown option '$1' (allowed: --prefix DIR, --work DIR, --jobs N, --cuda, --force, --configure-only)" >&2
+       exit 2 ;;
+  esac
+done
+case "$JOBS" in ''|*[!0-9]*|0) echo "build-trilinos.sh: --jobs '$JOBS': expected a positive integer" >&2; exit 2 ;; esac
+
+[ "$CUDA" = on ] && PREFIX=${PREFIX:-/opt/trilinos-13.2-openmp-cuda} || PREFIX=${PREFIX:-/opt/trilinos-13.2-openmp}
+STARTED=$(date +%s)
+say() { printf '[build-trilinos %5ds] %s\n' "$(( $(date +%s) - STARTED ))" "$*"; }
+
+if [ -f "$PREFIX/lib/cmake/Trilinos/TrilinosConfig.cmake" ] && [ "$FORCE" = 0 ]; then
+  say "already installed in $PREFIX (--force rebuilds); configure the project with -DTrilinos_DIR=$PREFIX/lib/cmake/Trilinos"
+  exit 0
+fi
+
+SUDO=; [ "$(id -u)" = 0 ] || SUDO=sudo
+say "installing the build tools and libraries (apt-get)"
+$SUDO apt-get update -qq
+$SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq ninja-build ccache dpkg-dev cmake g++ gfortran \
+  libopenmpi-dev openmpi-bin libopenblas-dev liblapack-dev libmumps-dev libhdf5-openmpi-dev >/dev/null
+
+SOURCES=/etc/apt/sources.list.d/debian-bookworm-src.sources
+if ! grep -rqs '^Types:.*deb-src\|^deb-src ' /etc/apt/sources.list /etc/apt/sources.list.d/; then
+  say "adding a deb-src line for bookworm main ($SOURCES)"
+  printf 'Types: deb-src\nURIs: http://deb.debian.org/debian\nSuites: bookworm\nComponents: main\nSigned-By: %s\n' \
+    /usr/share/keyrings/debian-archive-keyring.gpg | $SUDO tee "$SOURCES" >/dev/null
+  $SUDO apt-get update -qq
+fi
+
+mkdir -p "$WORK"
+SOURCE=$(find "$WORK" -maxdepth 1 -type d -name 'trilinos-13.2*' | head -n 1)
+if [ -z "$SOURCE" ]; then
+  say "fetching Debian's trilinos source package into $WORK"
+  (cd "$WORK" && apt-get source -qq trilinos >/dev/null)
+  SOURCE=$(find "$WORK" -maxdepth 1 -type d -name 'trilinos-13.2*' | head -n 1)
+  [ -n "$SOURCE" ] || { echo "build-trilinos.sh: apt-get source trilinos gave no trilinos-13.2* directory in $WORK" >&2; exit 1; }
+fi
+say "source: $SOURCE"
+
+BACKENDS=(-DKokkos_ENABLE_SERIAL=ON -DKokkos_ENABLE_OPENMP=ON -DTrilinos_ENABLE_OpenMP=ON
+          -DTpetra_INST_SERIAL=ON -DTpetra_INST_OPENMP=ON)
+COMPILER=(-DCMAKE_CXX_COMPILER=mpicxx -DCMAKE_C_COMPILER=mpicc -DCMAKE_Fortran_COMPILER=mpif90)
+VARIANT=openmp
+if [ "$CUDA" = on ]; then
+  command -v nvcc >/dev/null || { echo "build-trilinos.sh: --cuda: no nvcc on PATH (add the CUDA toolkit's bin directory)" >&2; exit 2; }
+  [ -n "${KOKKOS_ARCH:-}" ] || { echo "build-trilinos.sh: --cuda: set KOKKOS_ARCH to the GPU's Kokkos name (e.g. KOKKOS_ARCH=AMPERE80, VOLTA70)" >&2; exit 2; }
+  WRAPPER="$SOURCE/packages/kokkos/bin/nvcc_wrapper"
+  BACKENDS+=(-DKokkos_ENABLE_CUDA=ON -DKokkos_ENABLE_CUDA_LAMBDA=ON -DKokkos_ARCH_${KOKKOS_ARCH}=ON
+             -DTpetra_INST_CUDA=ON -DTpetra_ASSUME_CUDA_AWARE_MPI=OFF)
+  export OMPI_CXX=$WRAPPER
+  VARIANT=openmp+cuda
+fi
+
+BUILD="$WORK/build-$VARIANT"
+if [ ! -f "$BUILD/build.ninja" ]; then
+  say "configuring ($VARIANT) in $BUILD"
+  PACKAGES=(Teuchos Kokkos KokkosKernels Tpetra Thyra Stratimikos NOX Belos Ifpack2 MueLu Amesos2)
+  cmake -G Ninja -S "$SOURCE" -B "$BUILD" -Wno-dev \
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX="$PREFIX" -DBUILD_SHARED_LIBS=ON \
+    -DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache "${COMPILER[@]}" \
+    -DTPL_ENABLE_MPI=ON -DTPL_ENABLE_BLAS=ON -DTPL_BLAS_LIBRARIES=openblas -DTPL_ENABLE_LAPACK=ON \
+    -DTPL_LAPACK_LIBRARIES=lapack -DTPL_ENABLE_Boost=OFF -DTPL_ENABLE_Netcdf=OFF -DTPL_ENABLE_HDF5=OFF \
+    -DTrilinos_ENABLE_ALL_PACKAGES=OFF -DTrilinos_ENABLE_ALL_OPTIONAL_PACKAGES=OFF \
+    -DTrilinos_ENABLE_SECONDARY_TESTED_CODE=ON -DTrilinos_ENABLE_TESTS=OFF -DTrilinos_ENABLE_EXAMPLES=OFF \
+    $(printf -- '-DTrilinos_ENABLE_%s=ON ' "${PACKAGES[@]}") -DNOX_ENABLE_LOCA=ON -DNOX_ENABLE_ABSTRACT_IMPLEMENTATION_THYRA=ON \
+    -DMueLu_ENABLE_Tpetra=ON -DMueLu_ENABLE_Epetra=OFF -DTrilinos_ENABLE_Epetra=OFF -DTrilinos_ENABLE_EpetraExt=OFF \
+    -DCMAKE_INSTALL_RPATH="$PREFIX/lib" "${BACKENDS[@]}" > "$WORK/configure-$VARIANT.log" 2>&1 \
+    || { echo "build-trilinos.sh: configure failed, see $WORK/configure-$VARIANT.log" >&2; tail -n 30 "$WORK/configure-$VARIANT.log" >&2; exit 1; }
+fi
+
+if [ "$CONFIGURE_ONLY" = 1 ]; then
+  say "configured in $BUILD ($(grep -c '^build ' "$BUILD/build.ninja") build statements); run without --configure-only to build"
+  exit 0
+fi
+export CCACHE_DIR="$WORK/ccache" CCACHE_MAXSIZE=5G
+say "building with $JOBS jobs (log: $WORK/build-$VARIANT.log)"
+set +e
+NINJA_STATUS='[%f/%t] ' ninja -C "$BUILD" -j "$JOBS" install 2>&1 | tee "$WORK/build-$VARIANT.log" |
+  awk -v started="$STARTED" '
+    match($0, /^\[[0-9]+\/[0-9]+\]/) {
+      split(substr($0, 2, RLENGTH - 2), n, "/")
+      percent = int(100 * n[1] / n[2])
+      if (percent >= shown + 2) { shown = percent; printf("[build-trilinos %5ds] %3d %% (%d of %d steps)\n", systime() - started, percent, n[1], n[2]); fflush() }
+    }
+    /error:|FAILED:/ { print; fflush() }'
+STATUS=${PIPESTATUS[0]}
+set -e
+if [ "$STATUS" != 0 ]; then
+  echo "build-trilinos.sh: the build failed (exit $STATUS), see $WORK/build-$VARIANT.log; run the script again to go on" >&2
+  exit "$STATUS"
+fi
+SECONDS_TAKEN=$(( $(date +%s) - STARTED ))
+printf 'Trilinos 13.2 (%s) from %s\nbuilt %s with %s jobs in %d s (this call; a resumed build counts only its last call)\n' \
+  "$VARIANT" "$SOURCE" "$(date -u +%Y-%m-%dT%H:%MZ)" "$JOBS" "$SECONDS_TAKEN" > "$PREFIX/BUILD-INFO.txt"
+say "installed in $PREFIX ($VARIANT) in ${SECONDS_TAKEN} s"
+say "configure the project with: cmake -S . -B build-openmp -DTrilinos_DIR=$PREFIX/lib/cmake/Trilinos"
