@@ -1,0 +1,63 @@
+#!/usr/bin/env python3
+"""run-study.py --set: an override replaces an existing parameter's value and keeps its type, adds a missing
+parameter (type from its value) and the sublists on its path, applies to one scene when scoped, leaves the other
+scenes alone, and a malformed entry is refused; the scenes it writes pass the app's validation.
+
+    study_overrides.py <spatula app>"""
+import argparse
+import importlib.util
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
+specification = importlib.util.spec_from_file_location('run_study', os.path.join(ROOT, 'scripts', 'run-study.py'))
+study = importlib.util.module_from_spec(specification)
+specification.loader.exec_module(study)
+failures = 0
+
+
+def check(condition, what):
+    global failures
+    if not condition:
+        failures += 1
+        print('FAIL', what)
+
+
+def parameter(text, name):
+    """(type, value) of the parameter `name` (the first with that name), or None."""
+    match = re.search(rf'<Parameter name="{name}" type="(\w+)" value="([^"]*)"', text)
+    return match.groups() if match else None
+
+
+for entry in ('Linear Solver/lag=4', 'Linear Solver/MUMPS/low rank tolerance=0.0', 'Nonlinear Solver/line search=backtrack',
+              'peel-rotation:Loading/theta_y=90.0', 'pull-off-45:Loading/Lift Steps/maximum=5.0',
+              'Output/write mesh=false'):
+    study.OVERRIDES.append(study.parse_override(entry))
+rotation, pull_off, other = (study.scene_text(s) for s in ('peel-rotation', 'pull-off-45', 'pull-off-60'))
+check(parameter(rotation, 'theta_y') == ('double', '90.0'), f"scoped theta_y: {parameter(rotation, 'theta_y')}")
+check(parameter(other, 'theta_y') == ('double', '60'), 'an override scoped to peel-rotation changed pull-off-60')
+check(parameter(pull_off, 'maximum') == ('double', '5.0'), f"existing Lift Steps/maximum: {parameter(pull_off, 'maximum')}")
+check(parameter(other, 'maximum') == ('double', '10'), 'an override scoped to pull-off-45 changed pull-off-60')
+check(parameter(rotation, 'lag') == ('int', '4'), f"new int: {parameter(rotation, 'lag')}")
+check(parameter(rotation, 'low rank tolerance') == ('double', '0.0'), 'new double in a new sublist')
+check(parameter(rotation, 'line search') == ('string', 'backtrack'), 'new string')
+check(parameter(rotation, 'write mesh') == ('bool', 'false'), 'new bool')
+check('<!--' in rotation, 'the scene lost its comments')
+check(rotation.count('<ParameterList name="Linear Solver">') == 1, 'a sublist added twice')
+for bad in ('lag=4', 'Linear Solver/lag', 'a:b:Linear Solver/lag=4'):
+    try:
+        study.parse_override(bad)
+        check(False, f"malformed --set '{bad}' accepted")
+    except argparse.ArgumentTypeError as error:
+        check('expected [SCENE:]List/.../name=value' in str(error), f'message for {bad}: {error}')
+
+with tempfile.TemporaryDirectory() as work:
+    path = study.scene_file(work, 'coarse', 'peel-rotation')
+    check(parameter(open(path).read(), 'level') == ('string', 'coarse'), 'the level was not set')
+    result = subprocess.run([os.path.abspath(sys.argv[1]), path, '--validate-only'], cwd=work, capture_output=True, text=True)
+    check(result.returncode == 0, f'the overridden scene is not valid: {result.stdout[-300:]} {result.stderr[-300:]}')
+print('failures:', failures)
+sys.exit(1 if failures else 0)
