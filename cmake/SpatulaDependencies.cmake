@@ -56,10 +56,17 @@ if(SPATULA_KOKKOS_CONFIG_HEADER)
     foreach(target Kokkos Tpetra Solvers)
       set_property(TARGET Spatula::${target} APPEND PROPERTY INTERFACE_LINK_LIBRARIES OpenMP::OpenMP_CXX)
     endforeach()
-    message(STATUS "Kokkos backend: OpenMP (threads per rank: OMP_NUM_THREADS)")
+    message(STATUS "Kokkos backend: OpenMP (threads per rank: KOKKOS_NUM_THREADS, else OMP_NUM_THREADS)")
   else()
     message(STATUS "Kokkos backend: Serial")
   endif()
+endif()
+# Kokkos threads per rank in the unit tests (OMP_NUM_THREADS stays 1 there for OpenBLAS and MUMPS): 2 where the
+# backend is threaded, so the kernels' atomics and reductions are exercised.
+if(SPATULA_KOKKOS_OPENMP)
+  set(SPATULA_TEST_KOKKOS_THREADS 2 CACHE STRING "Kokkos threads per rank in the unit tests")
+else()
+  set(SPATULA_TEST_KOKKOS_THREADS 1 CACHE STRING "Kokkos threads per rank in the unit tests")
 endif()
 
 # MUMPS (distributed direct solver): Trilinos links it as a TPL; the headers are plain Debian ones.

@@ -58,7 +58,7 @@ function(spatula_test name)
                ${SPATULA_MPIEXEC_FLAGS} $<TARGET_FILE:${name}>)
     endif()
     set_tests_properties(${test_name} PROPERTIES PROCESSORS ${ranks}
-      ENVIRONMENT "OMPI_MCA_rmaps_base_oversubscribe=1;OMP_NUM_THREADS=1")
+      ENVIRONMENT "OMPI_MCA_rmaps_base_oversubscribe=1;OMP_NUM_THREADS=1;KOKKOS_NUM_THREADS=${SPATULA_TEST_KOKKOS_THREADS}")
     if(ARG_LABELS)
       set_tests_properties(${test_name} PROPERTIES LABELS "${ARG_LABELS}")
     endif()

@@ -1,7 +1,7 @@
 // Adhesion in the assembled system: the undeformed spatula stores -A_c w_adh (Q1C1 and Q1C2), a stiff block
 // lifted off the substrate feels area x traction with its maximum at r_min, the global tangent with contact and
-// enrichment against finite differences, the residual as the energy's gradient, 1 vs 2 ranks, and the law registry
-// open to new laws.
+// enrichment against finite differences, the residual as the energy's gradient, 1 vs 2 ranks, the same assembly on
+// any Kokkos backend and thread count as the Serial build's (stored values), and the law registry open to new laws.
 #include "contact/adhesion.hpp"
 #include "mesh/box_mesh.hpp"
 #include "contact/contact_registry.hpp"
@@ -14,8 +14,15 @@
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <gtest/gtest.h>
 
+#include <Kokkos_Core.hpp>
+
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
 #include <iostream>
+#include <map>
+#include <tuple>
 
 using namespace spatula;
 using discretization::DiscreteSystem;
@@ -35,9 +42,17 @@ contact::AdhesionSettings settings(discretization::Enrichment enrichment, const 
   return s;
 }
 
+mesh::MeshParameters level(const std::string& name)
+{
+  mesh::MeshParameters p;
+  p.level = name;
+  return p;
+}
+
 struct Spatula {
+  explicit Spatula(const std::string& level_name = "coarse") : mesh(mesh::mesh_spatula(shape, level(level_name))) {}
   geometry::SpatulaShape shape{geometry::ShapeParameters{}};
-  mesh::HexMesh mesh = mesh::mesh_spatula(shape, mesh::MeshParameters{});
+  mesh::HexMesh mesh;
   discretization::Constraints constraints() const
   {
     const auto p1 = shape.point(1);
@@ -202,6 +217,70 @@ TEST(Adhesion, SameOnAllRanksAndOnOne)
   EXPECT_NEAR(ea.internal_energy, eb.internal_energy, 1e-12 * eb.internal_energy);
   EXPECT_NEAR(fa->norm2(), fb->norm2(), 1e-12 * fb->norm2());
   EXPECT_EQ(ea.active_contact_faces + ea.skipped_contact_faces, eb.active_contact_faces + eb.skipped_contact_faces);
+}
+
+// What the Serial build assembles for the partly lifted pad (Q1C2, coarse and medium meshes), stored beside this file
+// by SPATULA_WRITE_ASSEMBLY_REFERENCE=1: energies, end-face reactions, the residual and the tangent applied to a fixed
+// vector. A threaded backend (an OpenMP Trilinos, KOKKOS_NUM_THREADS=2 in the tests) adds the element contributions
+// in another order through its atomics and reductions, so it must agree to rounding, not bit for bit.
+std::vector<std::pair<std::string, double>> assembly_fingerprint(const std::string& level_name,
+                                                                 Teuchos::RCP<const Teuchos::Comm<int>> comm)
+{
+  Spatula spatula(level_name);
+  auto system = spatula.system(settings(discretization::Enrichment::q1c2), comm);
+  auto x = spatula.partly_lifted_pad(*system);
+  auto f = system->create_vector(), w = system->create_vector(), kw = system->create_vector();
+  const auto evaluation = system->evaluate(*x, f.get(), true);
+  EXPECT_TRUE(evaluation.admissible);
+  // w by node of the node space (mesh and enrichment nodes), not by unknown id, which depends on the partition.
+  std::vector<double> nodal(system->space_displacements(*x).size());
+  for (std::size_t i = 0; i < nodal.size(); ++i) nodal[i] = std::sin(0.37 * double(i) + 0.1);
+  system->set_space_displacements(*w, nodal);
+  system->jacobian()->apply(*w, *kw);
+  return {{"internal energy", evaluation.internal_energy}, {"contact energy", evaluation.contact_energy},
+          {"moment", evaluation.master_residual[0]}, {"lift force", evaluation.master_residual[1]},
+          {"residual norm", f->norm2()}, {"residual . w", f->dot(*w)}, {"w . K w", w->dot(*kw)},
+          {"K w norm", kw->norm2()}, {"tangent Frobenius norm", system->jacobian()->getFrobeniusNorm()}};
+}
+
+TEST(Adhesion, AssemblyOnThisBackendAgreesWithTheSerialBuildsToRounding)
+{
+  const std::string directory = std::string(__FILE__).substr(0, std::string(__FILE__).rfind('/') + 1);
+  const std::string reference = directory + "assembly_reference.csv";
+  auto comm = Teuchos::DefaultComm<int>::getComm();
+  std::cout << "Kokkos backend " << Kokkos::DefaultExecutionSpace::name() << ", "
+            << Kokkos::DefaultExecutionSpace::concurrency() << " thread(s) per rank, " << comm->getSize()
+            << " rank(s)\n";
+  std::vector<std::tuple<std::string, std::string, double>> computed;
+  for (const std::string level_name : {"coarse", "medium"})
+    for (const auto& [quantity, value] : assembly_fingerprint(level_name, comm))
+      computed.emplace_back(level_name, quantity, value);
+  if (std::getenv("SPATULA_WRITE_ASSEMBLY_REFERENCE")) {
+    if (comm->getRank() == 0) {
+      std::ofstream out(reference);
+      out << "level,quantity,value\n" << std::setprecision(17);
+      for (const auto& [level_name, quantity, value] : computed) out << level_name << ',' << quantity << ',' << value << '\n';
+    }
+    GTEST_SKIP() << "wrote " << reference;
+  }
+  std::ifstream in(reference);
+  ASSERT_TRUE(in) << reference << " is missing: run this test once with SPATULA_WRITE_ASSEMBLY_REFERENCE=1 on a "
+                               "Serial build";
+  std::map<std::pair<std::string, std::string>, double> stored;
+  std::string line;
+  std::getline(in, line);
+  while (std::getline(in, line)) {
+    const auto first = line.find(','), last = line.rfind(',');
+    stored[{line.substr(0, first), line.substr(first + 1, last - first - 1)}] = std::stod(line.substr(last + 1));
+  }
+  double largest = 0.0;
+  for (const auto& [level_name, quantity, value] : computed) {
+    const auto found = stored.find({level_name, quantity});
+    ASSERT_NE(found, stored.end()) << level_name << ' ' << quantity << " not in " << reference;
+    EXPECT_NEAR(value, found->second, 1e-10 * std::abs(found->second)) << level_name << ' ' << quantity;
+    largest = std::max(largest, std::abs(value / found->second - 1.0));
+  }
+  std::cout << "largest relative difference from the Serial build's values: " << largest << '\n';
 }
 
 TEST(Adhesion, FacesBeyondTheCutOffAreSkippedButKeepTheirEnergy)
