@@ -2,7 +2,7 @@
 """The study tables' error bars (scripts/convergence.py) on manufactured values f = f* + C h^p over the levels' in-plane
 element sizes (coarse 1, medium 1/4, fine 1/8): three levels recover p and f* exactly, two levels with the assumed
 order 2 recover f* when p = 2, alternating changes are reported as outside the asymptotic range, and levels more than
-a factor 2 apart as another path."""
+a factor 2 apart as another path; levels with different element layers through the pad (4, 4, 10) are flagged."""
 import os
 import sys
 
@@ -38,5 +38,8 @@ finest, estimate, extrapolated, remark = richardson({'coarse': 9.0, 'medium': 94
 check('another path' in remark, f'levels a factor 10 apart: {remark}')
 finest, estimate, extrapolated, remark = richardson({'coarse': 11.0, 'medium': 6.7})
 check('not reliable' not in remark, f'levels a factor 1.6 apart: {remark}')
+finest, estimate, extrapolated, remark = richardson({'coarse': 11.0, 'medium': 6.7, 'fine': 6.6})
+check('layers through the pad (4, 4, 10)' in remark, f'levels with 4, 4 and 10 layers: {remark}')
+check('layers' not in richardson({'coarse': 11.0, 'medium': 6.7})[3], 'coarse and medium have the same layers')
 print('richardson: manufactured values recovered' if failures == 0 else f'{failures} failures')
 sys.exit(1 if failures else 0)
