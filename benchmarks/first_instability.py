@@ -43,7 +43,7 @@ MEDIUM_STUDY = os.path.join(ROOT, 'docs', 'study-runs', 'medium')
 FINAL_THETA = 36.0
 JUMP_RELEASE = 1e-4   # Pi_c0: the app's step balance tolerance; less is an ordinary step
 MAJOR_DROP = 0.1      # the first instability proper: a jump that drops M_y by more than 10 %
-BASE = dict(refinement=2, layers=0, adhesion={}, rotation_maximum=2.0, steps={})
+BASE = dict(refinement=2, layers=0, section='inscribed', adhesion={}, rotation_maximum=2.0, steps={})
 VARIANTS = {   # name: (what changed, scene arguments)
     'refinement-1': ('refinement factor 1 (the coarse mesh)', dict(refinement=1)),
     'base': ('refinement factor 2 (the base)', {}),
@@ -54,6 +54,11 @@ VARIANTS = {   # name: (what changed, scene arguments)
     'layers-10': ('10 element layers through the pad (the fine level\'s)', dict(layers=10)),
     'refinement-4-layers-10': ('refinement factor 4 (medium) with 10 layers through the pad',
                                dict(refinement=4, layers=10)),
+    'section-equal-area': ('4 layers, the shaft and rim section with its area (Mesh/section = equal area)',
+                           dict(section='equal area')),
+    'layers-10-section-equal-area': ('10 layers, the section with its area', dict(layers=10, section='equal area')),
+    'refinement-4-section-equal-area': ('refinement factor 4 (medium), 4 layers, the section with its area',
+                                        dict(refinement=4, section='equal area')),
     'quadrature-3': ('3 x 3 points per contact face', dict(adhesion={'quadrature': 3})),
     'quadrature-4': ('4 x 4 points per contact face', dict(adhesion={'quadrature': 4})),
     'quadrature-8': ('8 x 8 points per contact face', dict(adhesion={'quadrature': 8})),
@@ -69,7 +74,7 @@ VARIANTS = {   # name: (what changed, scene arguments)
 
 def scene(name, arguments):
     a = {**BASE, **arguments}
-    return benchmark_scene(name, mesh='coarse', refinement=a['refinement'], layers=a['layers'],
+    return benchmark_scene(name, mesh='coarse', refinement=a['refinement'], layers=a['layers'], section=a['section'],
                            adhesion={'enrichment': 'Q1C2', **a['adhesion']}, loading='rotation', theta_y=FINAL_THETA,
                            rotation_maximum=a['rotation_maximum'], steps=a['steps'] or None, land_at=(30.0,))
 
@@ -163,11 +168,15 @@ def main():
         rows.append(medium)
     text = table(rows)
     print(text)
-    if arguments.docs:
-        with open(os.path.join(ROOT, 'docs', 'first-instability.csv'), 'w', newline='') as out:
+    if arguments.docs:   # the variants run replace their rows; the others are kept
+        path = os.path.join(ROOT, 'docs', 'first-instability.csv')
+        kept = [r for r in (csv.DictReader(open(path)) if os.path.exists(path) else [])
+                if r['variant'] not in {n['variant'] for n in rows}]
+        order = {name: k for k, name in enumerate(list(VARIANTS) + ['medium-study'])}
+        with open(path, 'w', newline='') as out:
             writer = csv.DictWriter(out, fieldnames=list(rows[0]))
             writer.writeheader()
-            writer.writerows(rows)
+            writer.writerows(sorted(kept + rows, key=lambda r: order.get(r['variant'], len(order))))
         print('wrote docs/first-instability.csv')
     return 0
 

@@ -18,7 +18,7 @@ def parameter_list(name, entries, indent=0):
     return '\n'.join(lines)
 
 
-def benchmark_scene(name, *, mesh='coarse', refinement=1, layers=0, adhesion=None, loading='lift', theta_y=60.0,
+def benchmark_scene(name, *, mesh='coarse', refinement=1, layers=0, section='inscribed', adhesion=None, loading='lift', theta_y=60.0,
                     final_lift=600.0, rotation_maximum=2.0, lift_maximum=5.0, linear_solver=None, newton=None,
                     steps=None, jump=None, fields=-1, land_at=(), checkpoint_minutes=None):
     """A frictionless scene on a flat substrate unless `adhesion` (the Adhesion list's entries) says otherwise:
@@ -26,7 +26,7 @@ def benchmark_scene(name, *, mesh='coarse', refinement=1, layers=0, adhesion=Non
     Step maxima in deg and nm, minima 0.01; `steps`: further entries of both step lists. fields: -1 writes no
     fields, 0 the first and last states only, n every n-th state. `land_at`: rotation angles [deg] a step ends at
     exactly (written as checkpoints), so that values there are not interpolated. layers: element layers through the
-    pad (0: the level's). jump: entries of Loading/Jump. checkpoint_minutes: minutes between the `last state` checkpoints of a long run (the app's
+    pad (0: the level's). section: Mesh/section (the shaft's section polygon). jump: entries of Loading/Jump. checkpoint_minutes: minutes between the `last state` checkpoints of a long run (the app's
     default when None). The output directory is `name`."""
     step_lists = {'Rotation Steps': {'maximum': float(rotation_maximum), 'minimum': 0.01, **(steps or {})}}
     load = {'type': loading, 'theta_y': float(theta_y)}
@@ -37,7 +37,7 @@ def benchmark_scene(name, *, mesh='coarse', refinement=1, layers=0, adhesion=Non
         step_lists['Lift Steps'] = {'maximum': float(lift_maximum), 'minimum': 0.01, **(steps or {})}
     entries = {
         'Mesh': {'level': mesh, **({'refinement factor': refinement} if refinement != 1 else {}),
-                 **({'layers': layers} if layers else {})},
+                 **({'layers': layers} if layers else {}), **({'section': section} if section != 'inscribed' else {})},
         'Adhesion': {'law': 'frictionless', **(adhesion or {})},
         'Loading': {**load, **step_lists, **({'Jump': jump} if jump else {})},
         **({'Linear Solver': linear_solver} if linear_solver else {}),

@@ -34,6 +34,12 @@ const MeshLevel& find_level(const std::string& name)
 int MeshParameters::in_plane_factor() const { return find_level(level).in_plane_factor * refinement_factor; }
 int MeshParameters::layer_count() const { return layers > 0 ? layers : find_level(level).layers; }
 
+const std::vector<std::string>& MeshParameters::section_names()
+{
+  static const std::vector<std::string> names = {"inscribed", "equal area"};
+  return names;
+}
+
 void MeshParameters::declare(Teuchos::ParameterList& mesh)
 {
   const MeshParameters d;   // the defaults
@@ -46,6 +52,10 @@ void MeshParameters::declare(Teuchos::ParameterList& mesh)
                           parameters::Range::closed(1, 16));
   parameters::declare_int(mesh, "layers", d.layers, "elements through the pad thickness (0: the level's 4, 4, 10)",
                           parameters::Range::closed(0, 32));
+  parameters::declare_string(mesh, "section", parameters::name_of(d.section, section_names()),
+                             "the shaft and rim's half-disc section polygon: nodes on the curve (inscribed: 10 % of "
+                             "the area lost with 4 layers, 1.1 % with 10) or its arc's inner nodes moved outward to "
+                             "keep the curve's area (equal area)", section_names());
 }
 
 MeshParameters MeshParameters::from(const Teuchos::ParameterList& mesh)
@@ -54,6 +64,7 @@ MeshParameters MeshParameters::from(const Teuchos::ParameterList& mesh)
   p.level = mesh.get<std::string>("level");
   p.refinement_factor = mesh.get<int>("refinement factor");
   p.layers = mesh.get<int>("layers");
+  p.section = parameters::choice<SectionShape>(mesh, "section", section_names());
   if (p.layers != 0 && p.layers < 3)
     parameters::fail("Mesh/layers", p.layers, "allowed: 0 (the level's value) or 3..32");
   return p;
@@ -282,22 +293,33 @@ struct UnitSection {
   std::vector<std::array<int, 4>> quads;
 };
 
-UnitSection unit_half_disc(int diameter_segments)
+// The radius of the arc's inner nodes that gives the polygon of m equal chords (its ends (0, -1) and (0, 1) fixed on
+// the diameter) the half disc's area pi/2: 1/2 sin(pi/m) (2 s + (m - 2) s^2) = pi/2.
+double equal_area_radius(int chords)
+{
+  const double a = chords - 2.0, c = -pi / std::sin(pi / chords);
+  return (-2.0 + std::sqrt(4.0 - 4.0 * a * c)) / (2.0 * a);
+}
+
+UnitSection unit_half_disc(int diameter_segments, SectionShape shape)
 {
   const int n = diameter_segments;
   const int ring = std::max(1, n / 4), core_height = n - 2 * ring, core_width = std::max(1, core_height / 2);
   const double beta = double(core_height) / n, alpha = 0.5;
-  const double corner_angle = -0.5 * pi + pi * core_width / (2.0 * core_width + core_height);
-  auto arc = [](double from, double to, int segments) {
+  const int chords = 2 * core_width + core_height;   // equal chords on the arc
+  const double corner_angle = -0.5 * pi + pi * core_width / chords;
+  const double radius = shape == SectionShape::equal_area ? equal_area_radius(chords) : 1.0;
+  auto on_arc = [&](double angle) {   // the diameter's ends stay where the diameter is
+    const double r = std::abs(std::abs(angle) - 0.5 * pi) < 1e-12 ? 1.0 : radius;
+    return Vec2{r * std::cos(angle), r * std::sin(angle)};
+  };
+  auto arc = [&](double from, double to, int segments) {
     Edge edge;
-    for (int i = 0; i <= segments; ++i) {
-      const double angle = from + (to - from) * i / segments;
-      edge.points.push_back({std::cos(angle), std::sin(angle)});
-    }
+    for (int i = 0; i <= segments; ++i) edge.points.push_back(on_arc(from + (to - from) * i / segments));
     return edge;
   };
   const Vec2 lower{alpha, -beta}, upper{alpha, beta};
-  const Vec2 arc_lower{std::cos(corner_angle), std::sin(corner_angle)};
+  const Vec2 arc_lower = on_arc(corner_angle);
   const Vec2 arc_upper{arc_lower.x, -arc_lower.y};
   std::vector<Block> blocks;
   blocks.push_back(transfinite(straight({0, -beta}, lower, core_width), straight({0, beta}, upper, core_width),
@@ -332,9 +354,9 @@ UnitSection unit_half_disc(int diameter_segments)
   return section;
 }
 
-void shaft_and_rim(HexMeshBuilder& builder, const SpatulaShape& shape, int k, int layers)
+void shaft_and_rim(HexMeshBuilder& builder, const SpatulaShape& shape, int k, int layers, SectionShape section)
 {
-  const UnitSection unit = unit_half_disc(layers);
+  const UnitSection unit = unit_half_disc(layers, section);
   const int shaft_segments = 18 * k;
   std::vector<CrossSection> sections;
   for (int i = 0; i <= shaft_segments; ++i) sections.push_back(shape.shaft_section(double(i) / shaft_segments));
@@ -377,7 +399,7 @@ HexMesh mesh_spatula(const SpatulaShape& shape, const MeshParameters& parameters
   const int k = parameters.in_plane_factor();
   const int layers = parameters.layer_count();
   HexMeshBuilder builder;
-  shaft_and_rim(builder, shape, k, layers);
+  shaft_and_rim(builder, shape, k, layers, parameters.section);
   const Block band = outer_pad_band(shape, k);
   extrude(builder, band, layers, Part::outer_pad);
   for (const auto& block : prism_blocks(shape, k)) extrude(builder, block, layers, Part::prism);

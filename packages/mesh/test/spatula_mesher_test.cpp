@@ -250,6 +250,36 @@ TEST(SpatulaMesher, LayersAndRefinementFactor)
     for (double j : mesh::gauss_point_jacobians(mesh, e)) ASSERT_GT(j, 0.0);
 }
 
+// P_I's half-disc section is a polygon of m equal chords on its arc (m = 4 with 4 layers, 12 with 10): inscribed it
+// holds (m/2) sin(pi/m) of the disc's area pi/2, 90.0 % and 98.9 %. The shaft is most of the spatula's volume, so the
+// 4-layer mesh lacks 8 % of the 10-layer one's. With `section` = equal area the polygons hold the disc's area: 4 and
+// 10 layers then agree on the volume (to the hexahedra's straight edges along the curved rim axis), both above the
+// inscribed 10-layer mesh by the 1.1 % of the shaft that its 12 chords lose, and the elements keep their quality.
+TEST(SpatulaMesher, AnEqualAreaSectionGivesTheShaftItsVolumeWithFewLayers)
+{
+  const geometry::SpatulaShape shape{geometry::ShapeParameters{}};
+  auto summary_of = [&](int layers, mesh::SectionShape section) {
+    mesh::MeshParameters parameters;
+    parameters.layers = layers;
+    parameters.section = section;
+    return mesh::summarize(mesh::mesh_spatula(shape, parameters), "coarse");
+  };
+  const auto inscribed4 = summary_of(4, mesh::SectionShape::inscribed);
+  const auto inscribed10 = summary_of(10, mesh::SectionShape::inscribed);
+  const auto equal4 = summary_of(4, mesh::SectionShape::equal_area);
+  const auto equal10 = summary_of(10, mesh::SectionShape::equal_area);
+  auto inscribed_fraction = [](int chords) { return chords * std::sin(M_PI / chords) / M_PI; };
+  // The shaft's volume as the two inscribed meshes measure it (all of their difference is the section's).
+  const double shaft = (inscribed10.volume - inscribed4.volume) / (inscribed_fraction(12) - inscribed_fraction(4));
+  EXPECT_NEAR(equal4.volume, equal10.volume, 1e-3 * equal10.volume);
+  EXPECT_NEAR(equal10.volume - inscribed10.volume, shaft * (1.0 - inscribed_fraction(12)), 0.02 * shaft * 0.0114);
+  EXPECT_GT(shaft, 0.8 * inscribed10.volume);   // the shaft and rim are most of the volume
+  EXPECT_GE(equal4.min_scaled_jacobian, inscribed4.min_scaled_jacobian - 1e-12);
+  EXPECT_GT(equal10.min_scaled_jacobian, 0.25);
+  EXPECT_EQ(equal4.contact_elements, inscribed4.contact_elements);   // the pad is not touched
+  EXPECT_NEAR(equal4.contact_area, inscribed4.contact_area, 1e-12 * inscribed4.contact_area);
+}
+
 TEST(Partition, BisectionBalancesAndCoversEverything)
 {
   const HexMesh mesh = build("medium");
