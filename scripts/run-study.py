@@ -704,23 +704,30 @@ FIELD_PICTURES = (
 )
 
 
-def field_pictures(work, directory):
-    """Renders FIELD_PICTURES of the runs present; returns (file, caption) pairs."""
-    if not shutil.which('pvbatch') or not shutil.which('xvfb-run'):
-        print('pvbatch/xvfb-run not installed: no field pictures')
-        return []
+def field_pictures(works, directory):
+    """Renders FIELD_PICTURES from the finest level among `works` (finest first) whose run wrote fields; returns
+    (file, caption) pairs. A picture no run can render now (runs restored from docs/study-runs keep no fields) keeps
+    its earlier rendering in `directory`, if there is one, so that documenting from the archive loses no figure."""
+    renderer = shutil.which('pvbatch') and shutil.which('xvfb-run')
+    if not renderer:
+        print('pvbatch/xvfb-run not installed: field pictures not rendered (earlier renderings are kept)')
     out = []
     for scene, times, name, caption in FIELD_PICTURES:
-        states = os.path.join(work, scene, 'mesh_states.xmf')
-        if not os.path.exists(states):
-            states = os.path.join(work, scene + '.incomplete', 'mesh_states.xmf')
-            caption += ' (the run did not finish: its last written state)'
-        if not os.path.exists(states):
-            continue
-        command = ['bash', os.path.join(ROOT, 'scripts', 'render.sh'), os.path.join(ROOT, 'scripts', 'render_states.py'),
-                   states, os.path.join(directory, name), '--bottom'] + [str(t) for t in times]
-        if subprocess.call(command) == 0:
-            out.append((name, caption))
+        found = None
+        for work in works:
+            for suffix, note in (('', ''), ('.incomplete', ' (the run did not finish: its last written state)')):
+                states = os.path.join(work, scene + suffix, 'mesh_states.xmf')
+                if not found and os.path.exists(states):
+                    found = (states, caption + note)
+        if found and renderer:
+            command = ['bash', os.path.join(ROOT, 'scripts', 'render.sh'),
+                       os.path.join(ROOT, 'scripts', 'render_states.py'), found[0], os.path.join(directory, name),
+                       '--bottom'] + [str(t) for t in times]
+            if subprocess.call(command) == 0:
+                out.append((name, found[1]))
+                continue
+        if os.path.exists(os.path.join(directory, name)):
+            out.append((name, caption + ' (rendered from an earlier run of this scene)'))
     return out
 
 
@@ -768,8 +775,7 @@ def main():
     if arguments.docs:
         docs = os.path.join(ROOT, 'docs')
         pictures = plots(results, docs)
-        finest = next(level for level in reversed(LEVELS) if level in results)
-        pictures += field_pictures(results[finest][0], docs)
+        pictures += field_pictures([results[level][0] for level in reversed(LEVELS) if level in results], docs)
         template = open(os.path.join(ROOT, 'docs', 'validation-notes.md')).read()
         with open(os.path.join(docs, 'validation.md'), 'w') as out:
             out.write(template.replace('{{TABLES}}', text).replace(
