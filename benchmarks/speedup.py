@@ -28,7 +28,7 @@ iterations' = 0; 'after' is today's defaults):
                           grown after 7 iterations, 12 iterations per attempt) with the old solver settings; after =
                           the study's scenes as they are. Each half goes on from its checkpoints when a call of the
                           case is stopped (its wall time is then summed over the calls, a stopped call counted to its
-                          last log write); the row is written once both halves are complete. --level coarse runs
+                          runs' last log write; work directories table6-<level>-<before|after>); the row is written once both halves are complete. --level coarse runs
                           it on the coarse mesh, a quick check of the script (no row is written then).
   fine-pull-off-60        the fine-mesh (the paper's) frictionless Q1C2 pull-off at 60 deg on 2 ranks with the
                           after scene's settings and Loading/Jump/refactor = cost (a fine factorization is dear):
@@ -164,25 +164,32 @@ OLD_TABLE6_LIFT = ['Loading/Lift Steps/maximum=5.0', 'Loading/Lift Steps/easy it
 def table6_half(work, label, settings, level):
     """One half of medium-table6-study: run-study.py table6 with `settings` (--set entries) in <work>/table6-<label>,
     resumed from its checkpoints if an earlier call was stopped; returns its totals and the pull-offs' results."""
-    directory = os.path.join(work, f'table6-{label}')
+    directory = os.path.join(work, f'table6-{level}-{label}')
     segments = directory + '.segments'
-    command = [sys.executable, os.path.join(ROOT, 'scripts', 'run-study.py'), 'table6', '--mesh', level,
-               '--work', directory, '--jobs', '2'] + [f'--set={entry}' for entry in settings]
-    with open(segments, 'a') as out:
-        out.write(f'start {time.time():.1f}\n')
-    with open(directory + '.log', 'a') as log:
-        status = subprocess.call(command, stdout=log, stderr=subprocess.STDOUT, env=dict(ENVIRONMENT, SPATULA_APP=APP))
-    with open(segments, 'a') as out:
-        out.write(f'end {time.time():.1f}\n')
-    if status != 0:
-        sys.exit(f'medium-table6-study, {label}: run-study.py exit {status} (see {directory}.log)')
     runs = os.path.join(directory, level)
-    logs = [os.path.join(runs, name) for name in os.listdir(runs) if name.endswith('.log')]
+    scenes = ['peel-rotation'] + [f'pull-off-{angle}' for angle in TABLE6_ANGLES]
+    logs = lambda: [os.path.join(runs, name) for name in os.listdir(runs) if name.endswith('.log')]
+    lines = [line.split() for line in open(segments)] if os.path.exists(segments) else []
+    if lines and lines[-1][0] == 'start':   # the last call was stopped: it ends at its runs' last log write
+        stopped = float(lines[-1][1])
+        with open(segments, 'a') as out:
+            out.write(f'end {max([os.path.getmtime(l) for l in logs()] + [stopped]):.1f}\n')
+    if not all(os.path.exists(os.path.join(runs, scene, 'curve.csv')) for scene in scenes):
+        command = [sys.executable, os.path.join(ROOT, 'scripts', 'run-study.py'), 'table6', '--mesh', level,
+                   '--work', directory, '--jobs', '2'] + [f'--set={entry}' for entry in settings]
+        with open(segments, 'a') as out:
+            out.write(f'start {time.time():.1f}\n')
+        with open(directory + '.log', 'a') as log:
+            status = subprocess.call(command, stdout=log, stderr=subprocess.STDOUT,
+                                     env=dict(ENVIRONMENT, SPATULA_APP=APP))
+        with open(segments, 'a') as out:
+            out.write(f'end {time.time():.1f}\n')
+        if status != 0:
+            sys.exit(f'medium-table6-study, {label}: run-study.py exit {status} (see {directory}.log)')
+    logs = logs()
     wall, start = 0.0, None
     for kind, stamp in (line.split() for line in open(segments)):
         if kind == 'start':
-            if start is not None:   # a call that was stopped: counted to the last log write after its start
-                wall += max([os.path.getmtime(l) for l in logs if os.path.getmtime(l) > start], default=start) - start
             start = float(stamp)
         else:
             wall, start = wall + float(stamp) - start, None

@@ -5,7 +5,7 @@ runner's error bars (scripts/run-study.py) and checked on manufactured values by
 ELEMENT_SIZE = {'coarse': 1.0, 'medium': 1.0 / 4.0, 'fine': 1.0 / 8.0}
 LEVELS = tuple(ELEMENT_SIZE)   # coarse to fine
 # Element layers through the pad of each level (packages/mesh, mesh_levels()). The fine level's 10 against 4 also
-# changes the discretized geometry (the pad's volume +8 %, docs/validation.md), so levels with different layer counts
+# changes the discretized geometry (a fuller shaft section: +8 % volume, docs/validation.md), so levels with different layer counts
 # are not one refinement sequence in the element size alone.
 LAYERS = {'coarse': 4, 'medium': 4, 'fine': 10}
 # Where only two levels ran: the order of convergence assumed (the error benchmark observed 2.2 for P_max from k = 1,
@@ -34,6 +34,15 @@ def observed_order(values, sizes):
     return 0.5 * (low + high)
 
 
+def layers_remark(levels):
+    """'; the levels differ in element layers ...' where they do, else ''."""
+    layers = [LAYERS[level] for level in levels]
+    if len(set(layers)) == 1:
+        return ''
+    return ('; the levels differ in element layers through the pad (' + ', '.join(map(str, layers)) +
+            '): the estimate mixes the in-plane error with a change of the discretized geometry')
+
+
 def richardson(by_level):
     """The finest value, an estimate of its discretization error, the extrapolated value and a remark (the order
     observed from three levels, or assumed with two; why the estimate is not reliable where it is not)."""
@@ -46,16 +55,14 @@ def richardson(by_level):
         order = observed_order(values[-3:], sizes[-3:])
         if order is None:
             return finest, abs(finest - next_finest), None, ('not in the asymptotic range (the changes between levels '
-                                                             'do not shrink monotonically): estimate = last change')
+                                                             'do not shrink monotonically): estimate = last change'
+                                                             + layers_remark(levels))
         remark = f'order {order:.2f} observed'
     ratio = sizes[-2] / sizes[-1]
     correction = (finest - next_finest) / (ratio ** order - 1.0)
     if abs(correction) > 0.5 * abs(finest):
         remark += '; not reliable (the estimate exceeds half the value)'
-    layers = [LAYERS[level] for level in levels]
-    if len(set(layers)) > 1:
-        remark += ('; the levels differ in element layers through the pad (' + ', '.join(map(str, layers)) +
-                   '): the estimate mixes the in-plane error with a change of the discretized geometry')
+    remark += layers_remark(levels)
     magnitudes = [abs(v) for v in values]
     if min(magnitudes) > 0.0 and max(magnitudes) > PATH_CHANGE * min(magnitudes):
         remark += (f'; **not reliable**: the levels differ by more than a factor {PATH_CHANGE:g} (the coarser run '

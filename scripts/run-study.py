@@ -745,6 +745,12 @@ def main():
     arguments = parser.parse_args()
     if arguments.set and arguments.docs:
         parser.error('--docs documents the study scenes as written: it cannot be combined with --set')
+    if arguments.set and os.path.abspath(arguments.work) == os.path.abspath(parser.get_default('work')):
+        parser.error('--set needs its own --work directory: runs made with other settings must not mix with the '
+                     "study's own in " + parser.get_default('work'))
+    unknown = {o[0] for o in arguments.set if o[0]} - {scene for _, scene in planned_runs(arguments.study, None)}
+    if unknown:
+        parser.error(f"--set names scene(s) not in study {arguments.study}: {', '.join(sorted(unknown))}")
     OVERRIDES.extend(arguments.set)
     ARCHIVING[0] = not arguments.set
     if not os.path.exists(APP):

@@ -41,5 +41,7 @@ check('not reliable' not in remark, f'levels a factor 1.6 apart: {remark}')
 finest, estimate, extrapolated, remark = richardson({'coarse': 11.0, 'medium': 6.7, 'fine': 6.6})
 check('layers through the pad (4, 4, 10)' in remark, f'levels with 4, 4 and 10 layers: {remark}')
 check('layers' not in richardson({'coarse': 11.0, 'medium': 6.7})[3], 'coarse and medium have the same layers')
+remark = richardson({'coarse': 10.98, 'medium': 190.8 / 19.08, 'fine': 9.0})[3]
+check('asymptotic' in remark and 'layers through the pad' in remark, f'non-monotone with mixed layers: {remark}')
 print('richardson: manufactured values recovered' if failures == 0 else f'{failures} failures')
 sys.exit(1 if failures else 0)

@@ -8,8 +8,8 @@
 //  - P_IV: a C-grid, a core block and three ring blocks (2k thick) following its curved outline;
 //  - P_I: a half-disc cross-section mesh swept along the axis (18k segments on the shaft), its flat face
 //    coinciding with the symmetry plane (shaft), then with the P_III and P_II interfaces.
-// The pad parts are extruded in `layers` equal layers; P_I's half-disc has `layers` segments on its diameter and as
-// many equal chords on its arc (4 with 4 layers, 12 with 10). Inscribed in the disc, such a polygon holds 90.0 % of
+// The pad parts are extruded in `layers` equal layers; P_I's half-disc has `layers` segments on its diameter and
+// equal chords on its arc (4 with 4 layers, 8 with 6, 12 with 10). Inscribed in the disc, such a polygon holds 90.0 % of
 // its area with 4 chords (98.9 % with 12) and 81 % (97.7 %) of its second moment about the horizontal axis: the
 // 4-layer levels' shaft is 10 % thinner and about 19 % softer in bending than the spatula's. `section` = equal area
 // moves the arc's inner nodes outward so that the polygon has the disc's area (second moment 94.9 %, 99.8 %).
