@@ -168,12 +168,13 @@ def table6_half(work, label, settings, level):
     segments = directory + '.segments'
     runs = os.path.join(directory, level)
     scenes = ['peel-rotation'] + [f'pull-off-{angle}' for angle in TABLE6_ANGLES]
-    logs = lambda: [os.path.join(runs, name) for name in os.listdir(runs) if name.endswith('.log')]
+    def run_logs():
+        return [os.path.join(runs, name) for name in os.listdir(runs) if name.endswith('.log')]
     lines = [line.split() for line in open(segments)] if os.path.exists(segments) else []
     if lines and lines[-1][0] == 'start':   # the last call was stopped: it ends at its runs' last log write
         stopped = float(lines[-1][1])
         with open(segments, 'a') as out:
-            out.write(f'end {max([os.path.getmtime(l) for l in logs()] + [stopped]):.1f}\n')
+            out.write(f'end {max([os.path.getmtime(l) for l in run_logs()] + [stopped]):.1f}\n')
     if not all(os.path.exists(os.path.join(runs, scene, 'curve.csv')) for scene in scenes):
         command = [sys.executable, os.path.join(ROOT, 'scripts', 'run-study.py'), 'table6', '--mesh', level,
                    '--work', directory, '--jobs', '2'] + [f'--set={entry}' for entry in settings]
@@ -186,7 +187,7 @@ def table6_half(work, label, settings, level):
             out.write(f'end {time.time():.1f}\n')
         if status != 0:
             sys.exit(f'medium-table6-study, {label}: run-study.py exit {status} (see {directory}.log)')
-    logs = logs()
+    logs = run_logs()
     wall, start = 0.0, None
     for kind, stamp in (line.split() for line in open(segments)):
         if kind == 'start':
@@ -204,9 +205,10 @@ def table6_half(work, label, settings, level):
 
 def medium_table6_study(work, level):
     solvers = {k: v for k, v in OLD_SCENE.items() if k != 'Steps'}   # 'Steps' holds entries of both step lists
-    steps = [f'peel-rotation:Loading/Rotation Steps/{entry}' for entry in flattened(OLD_SCENE['Steps'])]
+    old_steps = flattened(OLD_SCENE['Steps'])
+    steps = [f'peel-rotation:Loading/Rotation Steps/{entry}' for entry in old_steps]
     steps += [f'pull-off-{a}:{entry}' for a in TABLE6_ANGLES for entry in
-              OLD_TABLE6_LIFT + [f'Loading/Lift Steps/{e}' for e in flattened(OLD_SCENE['Steps'])]]
+              OLD_TABLE6_LIFT + [f'Loading/Lift Steps/{e}' for e in old_steps]]
     before = table6_half(work, 'before', flattened(solvers) + TABLE6_ROTATION + steps, level)
     after = table6_half(work, 'after', TABLE6_ROTATION, level)
     change = max(abs(after['results'][a][q] / before['results'][a][q] - 1) * 100

@@ -176,8 +176,12 @@ def complete(work, scene):
 # work directory (a new machine, a cleaned disk): its curve, scene, mesh summary and log, and the checkpoints of a
 # rotation that pull-offs start from. A later study restores them into the work directory instead of running again.
 ARCHIVE = os.path.join(ROOT, 'docs', 'study-runs')
-ARCHIVING = [True]   # off when --set changed the scenes: their runs are not the study's
 KEPT_FILES = ('curve.csv', 'scene.xml', 'mesh_summary.csv', 'mesh_summary.txt', '.spatula-output')
+
+
+def archiving():
+    """Whether runs are restored from and kept in ARCHIVE: not when --set changed the scenes (not the study's own)."""
+    return not OVERRIDES
 
 
 def archive(work, level, scene):
@@ -301,7 +305,7 @@ def step_lines(log):
 def run_all(runs, work, jobs):
     """Runs the (level, scene) pairs not yet complete in <work>/<level>, `jobs` at a time (a stopped one resumed from
     its last checkpoint); returns the failed ones."""
-    for level, scene in restore(work, runs) if ARCHIVING[0] else []:
+    for level, scene in restore(work, runs) if archiving() else []:
         print(f'[{level} {scene}] restored from {os.path.relpath(ARCHIVE, ROOT)}/ (complete)', flush=True)
     pending = [r for r in runs if not complete(os.path.join(work, r[0]), r[1])]
     running = {}
@@ -363,7 +367,7 @@ def run_all(runs, work, jobs):
                 print(f'[{level} {scene}] {status} after {time.time() - started:.0f} s', flush=True)
                 if process.returncode != 0:
                     failed.append(run)
-                elif ARCHIVING[0] and complete(os.path.join(work, level), scene):
+                elif archiving() and complete(os.path.join(work, level), scene):
                     archive(work, level, scene)
                 del running[run]
     return failed
@@ -713,12 +717,9 @@ def field_pictures(works, directory):
         print('pvbatch/xvfb-run not installed: field pictures not rendered (earlier renderings are kept)')
     out = []
     for scene, times, name, caption in FIELD_PICTURES:
-        found = None
-        for work in works:
-            for suffix, note in (('', ''), ('.incomplete', ' (the run did not finish: its last written state)')):
-                states = os.path.join(work, scene + suffix, 'mesh_states.xmf')
-                if not found and os.path.exists(states):
-                    found = (states, caption + note)
+        candidates = ((os.path.join(work, scene + suffix, 'mesh_states.xmf'), caption + note) for work in works
+                      for suffix, note in (('', ''), ('.incomplete', ' (the run did not finish: its last written state)')))
+        found = next(((states, text) for states, text in candidates if os.path.exists(states)), None)
         if found and renderer:
             command = ['bash', os.path.join(ROOT, 'scripts', 'render.sh'),
                        os.path.join(ROOT, 'scripts', 'render_states.py'), found[0], os.path.join(directory, name),
@@ -752,15 +753,14 @@ def main():
     if unknown:
         parser.error(f"--set names scene(s) not in study {arguments.study}: {', '.join(sorted(unknown))}")
     OVERRIDES.extend(arguments.set)
-    ARCHIVING[0] = not arguments.set
     if not os.path.exists(APP):
         sys.exit(f'{APP} not found: build first (bash scripts/build.sh)')
     runs = planned_runs(arguments.study, arguments.mesh)
     started = time.time()
-    for level, scene in runs if ARCHIVING[0] else []:   # complete runs of an earlier study not yet kept
+    for level, scene in runs if archiving() else []:   # complete runs of an earlier study not yet kept
         if complete(os.path.join(arguments.work, level), scene) and not complete(os.path.join(ARCHIVE, level), scene):
             archive(arguments.work, level, scene)
-    if arguments.no_run and ARCHIVING[0]:   # with --no-run, tabulate every kept run, at every level
+    if arguments.no_run and archiving():   # with --no-run, tabulate every kept run, at every level
         restore(arguments.work, [(level, scene) for level in LEVELS if os.path.isdir(os.path.join(ARCHIVE, level))
                                  for scene in sorted(os.listdir(os.path.join(ARCHIVE, level)))])
     failed = [] if arguments.no_run else run_all(runs, arguments.work, arguments.jobs)

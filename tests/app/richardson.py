@@ -8,15 +8,7 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'scripts'))
 from convergence import ELEMENT_SIZE, observed_order, richardson  # noqa: E402
-
-failures = 0
-
-
-def check(condition, what):
-    global failures
-    if not condition:
-        failures += 1
-        print('FAIL', what)
+from expectations import check, finish  # noqa: E402
 
 
 for p in (1.0, 1.5, 2.0, 3.0):
@@ -43,5 +35,4 @@ check('layers through the pad (4, 4, 10)' in remark, f'levels with 4, 4 and 10 l
 check('layers' not in richardson({'coarse': 11.0, 'medium': 6.7})[3], 'coarse and medium have the same layers')
 remark = richardson({'coarse': 10.98, 'medium': 190.8 / 19.08, 'fine': 9.0})[3]
 check('asymptotic' in remark and 'layers through the pad' in remark, f'non-monotone with mixed layers: {remark}')
-print('richardson: manufactured values recovered' if failures == 0 else f'{failures} failures')
-sys.exit(1 if failures else 0)
+finish('richardson: manufactured values recovered')

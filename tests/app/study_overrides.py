@@ -16,14 +16,7 @@ ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
 specification = importlib.util.spec_from_file_location('run_study', os.path.join(ROOT, 'scripts', 'run-study.py'))
 study = importlib.util.module_from_spec(specification)
 specification.loader.exec_module(study)
-failures = 0
-
-
-def check(condition, what):
-    global failures
-    if not condition:
-        failures += 1
-        print('FAIL', what)
+from expectations import check, finish  # noqa: E402
 
 
 def parameter(text, name):
@@ -59,5 +52,4 @@ with tempfile.TemporaryDirectory() as work:
     check(parameter(open(path).read(), 'level') == ('string', 'coarse'), 'the level was not set')
     result = subprocess.run([os.path.abspath(sys.argv[1]), path, '--validate-only'], cwd=work, capture_output=True, text=True)
     check(result.returncode == 0, f'the overridden scene is not valid: {result.stdout[-300:]} {result.stderr[-300:]}')
-print('failures:', failures)
-sys.exit(1 if failures else 0)
+finish('study overrides: all expectations met')
