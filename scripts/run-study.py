@@ -81,7 +81,7 @@ def parse_override(text):
         raise argparse.ArgumentTypeError(f"--set '{text}': expected [SCENE:]List/.../name=value, e.g. "
                                          "'Linear Solver/lag=4' or 'peel-rotation:Loading/theta_y=90'")
     *path, name = match.group(2).split('/')
-    return match.group(1), path, name, match.group(3)
+    return match.group(1), tuple(path), name, match.group(3)
 
 
 def parameter_type(value):
@@ -118,13 +118,17 @@ def apply_overrides(text, scene, overrides):
     return ElementTree.tostring(root, encoding='unicode') + '\n'
 
 
-@functools.lru_cache(maxsize=None)
 def scene_text(scene):
-    """xml/studies/<scene>.xml with the command line's --set entries applied."""
-    return apply_overrides(open(os.path.join(SCENES, scene + '.xml')).read(), scene, OVERRIDES)
+    """xml/studies/<scene>.xml with the command line's --set entries applied (as they are now: the cache is keyed
+    by them, so a look-up before they were all read cannot hide them later)."""
+    return overridden_scene_text(scene, tuple(OVERRIDES))
 
 
 @functools.lru_cache(maxsize=None)
+def overridden_scene_text(scene, overrides):
+    return apply_overrides(open(os.path.join(SCENES, scene + '.xml')).read(), scene, overrides)
+
+
 def scene_parameter(scene, name):
     """The value (as text) of parameter `name` in the scene (after --set), or None."""
     match = re.search(rf'name="{name}" type="\w+" value="([^"]*)"', scene_text(scene))
@@ -142,6 +146,9 @@ def planned_runs(study, forced_level):
     for name in names:
         for scene in STUDIES[name]:
             level = forced_level or STUDY_LEVEL.get(name) or scene_level(scene)
+            if level not in LEVELS:   # e.g. 'auto': a study tabulates and extrapolates by named levels
+                sys.exit(f"run-study.py: scene {scene} has Mesh/level '{level}'; a study runs at one of "
+                         f"{', '.join(LEVELS)} (use --mesh)")
             if (level, scene) not in runs:
                 runs.append((level, scene))
     return sorted(runs, key=lambda r: (r[0] != 'coarse', not r[1].startswith('peel'), r[1]))
@@ -749,10 +756,10 @@ def main():
     if arguments.set and os.path.abspath(arguments.work) == os.path.abspath(parser.get_default('work')):
         parser.error('--set needs its own --work directory: runs made with other settings must not mix with the '
                      "study's own in " + parser.get_default('work'))
+    OVERRIDES.extend(arguments.set)
     unknown = {o[0] for o in arguments.set if o[0]} - {scene for _, scene in planned_runs(arguments.study, None)}
     if unknown:
         parser.error(f"--set names scene(s) not in study {arguments.study}: {', '.join(sorted(unknown))}")
-    OVERRIDES.extend(arguments.set)
     if not os.path.exists(APP):
         sys.exit(f'{APP} not found: build first (bash scripts/build.sh)')
     runs = planned_runs(arguments.study, arguments.mesh)
