@@ -265,7 +265,8 @@ def document(results, ref, work):
              'A row whose source is a study took its time from that study\'s wall clock. The rows were made before '
              'the step control bisected towards a twice-failed load (commit 9d02272, 21 % less CPU on the coarse '
              'pull-off, [performance.md](performance.md)); a run is redone by deleting its row from '
-             '`<work>/results.csv`.', '',
+             '`<work>/results.csv`. Against the fine level (the paper\'s resolution) and with the equal-area shaft '
+             'section, and the mesh `Mesh/level` = auto picks for a target error: [mesh-choice.md](mesh-choice.md).', '',
              '## Reference (Q1C2, 6 × 6 points)', '']
     names = reference_names(results)
     if len(names) == 3:

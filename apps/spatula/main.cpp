@@ -70,10 +70,11 @@ Options parse(int argc, char** argv)
 }
 
 void write_summary_files(const spatula::io::OutputDirectory& directory, const spatula::mesh::MeshSummary& summary,
-                         const spatula::geometry::SpatulaShape& shape)
+                         const spatula::geometry::SpatulaShape& shape, const std::string& mesh_choice)
 {
   std::ofstream text(directory.file("mesh_summary.txt"));
   spatula::mesh::print(text, summary);
+  if (!mesh_choice.empty()) text << "  " << mesh_choice << "\n";
   text << "  r5 [nm]                             " << shape.r5() << "\n"
        << "  theta_s [deg]                       " << shape.theta_s() * 180.0 / pi << "\n";
   std::ofstream csv(directory.file("mesh_summary.csv"));
@@ -123,6 +124,7 @@ Checked check_everything(const Options& options, const Teuchos::Comm<int>& comm)
 void print_summary(std::ostream& out, const Checked& run, const spatula::mesh::MeshSummary& summary)
 {
   spatula::mesh::print(out, summary);
+  if (!run.scene->mesh.choice.empty()) out << "  " << run.scene->mesh.choice << "\n";
   out << "  r5 [nm]                             " << run.shape->r5() << "\n"
       << "  theta_s [deg]                       " << run.shape->theta_s() * 180.0 / pi << "\n"
       << "  partition                           " << run.partition.ranks << " rank(s), elements per rank:";
@@ -188,7 +190,7 @@ void open_output(const Checked& run, const spatula::mesh::MeshSummary& summary,
     directory = std::make_unique<io::OutputDirectory>(scene.output.directory);
   }
   parameters::write_xml_file(scene.validated, directory->file("scene.xml"));
-  write_summary_files(*directory, summary, *run.shape);
+  write_summary_files(*directory, summary, *run.shape, run.scene->mesh.choice);
   if (scene.output.write_mesh || scene.loading.type != app::LoadingType::none)
     fields = open_fields(*directory, run, scene, out);
 }

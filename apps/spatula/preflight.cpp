@@ -212,6 +212,7 @@ void check_memory(const Scene& scene, const MemoryEstimate& estimate)
   for (int r = 1; r < m.refinement_factor; ++r)
     if (peak_bytes(scene, 3.0 * estimate.nodes_at(r)) <= usable * estimate.available_bytes) fits = r;
   if (fits > 0) message << "Allowed here: 'Mesh/refinement factor' <= " << fits << "";
+  else if (!m.choice.empty()) message << "Raise 'Mesh/target error' (with 'Mesh/level' = auto) for a coarser mesh";
   else message << "Use a coarser 'Mesh/level' or fewer 'Mesh/layers'";
   if (scene.linear_solver.type == solvers::LinearSolverType::mumps) {
     const double iterative = MemoryModel::iterative(double(estimate.unknowns), scene.linear_solver.fill_level);

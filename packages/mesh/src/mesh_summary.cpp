@@ -104,6 +104,7 @@ MeshSummary summarize(const HexMesh& mesh, const std::string& level)
   summary.nodes = mesh.node_count();
   summary.elements = mesh.element_count();
   summary.min_scaled_jacobian = std::numeric_limits<double>::max();
+  summary.min_scaled_jacobian_per_part.fill(std::numeric_limits<double>::max());
   summary.min_gauss_jacobian = std::numeric_limits<double>::max();
   double half_volume = 0.0;
   for (std::int64_t e = 0; e < mesh.element_count(); ++e) {
@@ -113,7 +114,10 @@ MeshSummary summarize(const HexMesh& mesh, const std::string& level)
       half_volume += j;   // Gauss weights are 1
       summary.min_gauss_jacobian = std::min(summary.min_gauss_jacobian, j);
     }
-    summary.min_scaled_jacobian = std::min(summary.min_scaled_jacobian, scaled_jacobian(mesh, e));
+    const double scaled = scaled_jacobian(mesh, e);
+    summary.min_scaled_jacobian = std::min(summary.min_scaled_jacobian, scaled);
+    auto& in_part = summary.min_scaled_jacobian_per_part[static_cast<int>(mesh.parts[e])];
+    in_part = std::min(in_part, scaled);
   }
   summary.volume = 2.0 * half_volume;
   const auto& contact = mesh.sides(Boundary::contact);

@@ -21,6 +21,7 @@ struct MeshSummary {
   double contact_area = 0.0;               // full spatula [nm^2]
   double volume = 0.0;                     // full spatula [nm^3]
   double min_scaled_jacobian = 0.0;        // over all element corners, 1 for a cube
+  std::array<double, part_count> min_scaled_jacobian_per_part{};
   double min_gauss_jacobian = 0.0;         // smallest det J over 2x2x2 Gauss points [nm^3]
 };
 

@@ -1,5 +1,6 @@
 #include "mesh/spatula_mesher.hpp"
 
+#include "mesh/mesh_choice.hpp"
 #include "parameters/parameter_validation.hpp"
 
 #include <algorithm>
@@ -45,10 +46,14 @@ void MeshParameters::declare(Teuchos::ParameterList& mesh)
   const MeshParameters d;   // the defaults
   std::vector<std::string> names;
   for (const auto& level : mesh_levels()) names.push_back(level.name);
+  names.push_back("auto");
   parameters::declare_string(mesh, "level", d.level,
-                             "mesh density as in the paper's Table 3 (in-plane factor 1, 4, 8)", names);
+                             "mesh density as in the paper's Table 3 (in-plane factor 1, 4, 8), or auto: the mesh with "
+                             "the fewest hexahedra whose measured error is within 'target error' (it then sets "
+                             "refinement factor, layers and section itself)", names);
   parameters::declare_int(mesh, "refinement factor", d.refinement_factor,
-                          "extra in-plane subdivision of every pad element",
+                          "multiplies the level's in-plane factor k: every pad element split k x k more, the shaft "
+                          "and rim's axis segments k times more (the coarse level refined 4 times is the medium one)",
                           parameters::Range::closed(1, 16));
   parameters::declare_int(mesh, "layers", d.layers, "elements through the pad thickness (0: the level's 4, 4, 10)",
                           parameters::Range::closed(0, 32));
@@ -56,6 +61,11 @@ void MeshParameters::declare(Teuchos::ParameterList& mesh)
                              "the shaft and rim's half-disc section polygon: nodes on the curve (inscribed: 10 % of "
                              "the area lost with 4 layers, 1.1 % with 10) or its arc's inner nodes moved outward to "
                              "keep the curve's area (equal area)", section_names());
+  parameters::declare_double(mesh, "target error", d.target_error_percent,
+                             "level = auto only: the largest relative error [%] of P_max, Delta u_z and Delta Pi_ext "
+                             "allowed, as measured against the fine level on the pull-off at 60 deg (other scenes "
+                             "may differ; docs/mesh-choice.md)",
+                             parameters::Range{0.0, 100.0, true, false});
 }
 
 MeshParameters MeshParameters::from(const Teuchos::ParameterList& mesh)
@@ -65,9 +75,19 @@ MeshParameters MeshParameters::from(const Teuchos::ParameterList& mesh)
   p.refinement_factor = mesh.get<int>("refinement factor");
   p.layers = mesh.get<int>("layers");
   p.section = parameters::choice<SectionShape>(mesh, "section", section_names());
+  p.target_error_percent = mesh.get<double>("target error");
   if (p.layers != 0 && p.layers < 3)
     parameters::fail("Mesh/layers", p.layers, "allowed: 0 (the level's value) or 3..32");
-  return p;
+  if (p.level != "auto") return p;
+  if (p.refinement_factor != 1 || p.layers != 0 || p.section != SectionShape::inscribed)
+    throw parameters::InputError("parameter 'Mesh/level' = 'auto' chooses 'refinement factor', 'layers' and "
+                                 "'section' itself: leave them at their defaults (1, 0, 'inscribed'; got " +
+                                 std::to_string(p.refinement_factor) + ", " + std::to_string(p.layers) + ", '" +
+                                 parameters::name_of(p.section, section_names()) + "') or name a level");
+  auto choice = choose_mesh(p.target_error_percent);
+  choice.parameters.target_error_percent = p.target_error_percent;
+  choice.parameters.choice = choice.reason;
+  return choice.parameters;
 }
 
 namespace {

@@ -26,10 +26,12 @@ namespace spatula::mesh {
 enum class SectionShape { inscribed, equal_area };
 
 struct MeshParameters {
-  std::string level = "coarse";   // a name in mesh_levels()
+  std::string level = "coarse";   // a name in mesh_levels(); 'auto' in a scene is resolved by from()
   int refinement_factor = 1;      // multiplies the level's in-plane subdivision
   int layers = 0;                 // elements through the pad thickness; 0: the level's value
   SectionShape section = SectionShape::inscribed;
+  double target_error_percent = 2.0;   // level = auto: the largest measured error allowed (mesh_choice.hpp)
+  std::string choice;                  // level = auto: what was picked and why (empty otherwise)
 
   static const std::vector<std::string>& section_names();
 

@@ -1,6 +1,7 @@
 // The spatula mesh at all three levels: conformity, positive Jacobians, node/side sets on their surfaces,
 // element counts next to the paper's Table 3, contact area, and a non-default shape.
 #include "mesh/hexahedron.hpp"
+#include "mesh/mesh_choice.hpp"
 #include "mesh/mesh_summary.hpp"
 #include "mesh/partition.hpp"
 #include "mesh/spatula_mesher.hpp"
@@ -9,7 +10,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <map>
+#include <sstream>
+
+#include "parameters/parameter_validation.hpp"
 
 using namespace spatula;
 using mesh::Boundary;
@@ -274,10 +279,125 @@ TEST(SpatulaMesher, AnEqualAreaSectionGivesTheShaftItsVolumeWithFewLayers)
   EXPECT_NEAR(equal4.volume, equal10.volume, 1e-3 * equal10.volume);
   EXPECT_NEAR(equal10.volume - inscribed10.volume, shaft * (1.0 - inscribed_fraction(12)), 0.02 * shaft * 0.0114);
   EXPECT_GT(shaft, 0.8 * inscribed10.volume);   // the shaft and rim are most of the volume
+  // Quality in P_I, the only part whose nodes move (the whole mesh's minimum sits in the pad, at the corner P2).
+  const int shaft_part = static_cast<int>(mesh::Part::shaft_and_rim);
+  EXPECT_GT(equal4.min_scaled_jacobian_per_part[shaft_part],
+            0.9 * inscribed4.min_scaled_jacobian_per_part[shaft_part]);
+  EXPECT_GT(equal10.min_scaled_jacobian_per_part[shaft_part],
+            0.9 * inscribed10.min_scaled_jacobian_per_part[shaft_part]);
   EXPECT_GE(equal4.min_scaled_jacobian, inscribed4.min_scaled_jacobian - 1e-12);
   EXPECT_GT(equal10.min_scaled_jacobian, 0.25);
   EXPECT_EQ(equal4.contact_elements, inscribed4.contact_elements);   // the pad is not touched
   EXPECT_NEAR(equal4.contact_area, inscribed4.contact_area, 1e-12 * inscribed4.contact_area);
+}
+
+// The table behind 'Mesh/level' = auto states each candidate's hexahedra; they must be what the mesher builds.
+TEST(MeshChoice, TheTableCountsTheMeshersHexahedra)
+{
+  const geometry::SpatulaShape shape{geometry::ShapeParameters{}};
+  for (const auto& candidate : mesh::mesh_candidates())
+    EXPECT_EQ(mesh::mesh_spatula(shape, candidate.parameters).element_count(), candidate.hexahedra)
+        << candidate.label;
+  EXPECT_EQ(mesh::mesh_candidates().back().parameters.level, "fine");
+  EXPECT_EQ(mesh::mesh_candidates().back().error_percent, 0.0);
+}
+
+// The table's errors are those benchmarks/mesh_choice.py measured (docs/mesh-choice.csv), to the table's rounding, and
+// every mesh measured there is in the table (so the picks docs/mesh-choice.md lists are the app's).
+TEST(MeshChoice, TheTableIsTheMeasuredOne)
+{
+  const std::string file = __FILE__;
+  const std::string path = file.substr(0, file.rfind("/packages/")) + "/docs/mesh-choice.csv";
+  std::ifstream in(path);
+  ASSERT_TRUE(in) << "cannot read " << path;
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> header;
+  for (std::stringstream fields(line); std::getline(fields, line, ',');) header.push_back(line);
+  std::vector<std::map<std::string, std::string>> rows;
+  while (std::getline(in, line)) {
+    std::map<std::string, std::string> row;
+    std::stringstream fields(line);
+    for (const auto& name : header) std::getline(fields, row[name], ',');
+    rows.push_back(row);
+  }
+  for (const auto& candidate : mesh::mesh_candidates()) {
+    const auto& p = candidate.parameters;
+    const auto measured = std::find_if(rows.begin(), rows.end(), [&](auto& row) {
+      return row["level"] == p.level && std::stoi(row["refinement_factor"]) == p.refinement_factor &&
+             std::stoi(row["layers"]) == p.layers &&
+             row["section"] == mesh::MeshParameters::section_names()[static_cast<int>(p.section)];
+    });
+    ASSERT_NE(measured, rows.end()) << candidate.label << " is not in " << path;
+    EXPECT_EQ(std::stoll((*measured).at("hexahedra")), candidate.hexahedra) << candidate.label;
+    const double error = std::stod((*measured).at("largest_error_pct"));
+    EXPECT_NEAR(candidate.error_percent, error, 0.05 * error + 0.01) << candidate.label;
+  }
+  for (auto& row : rows) {
+    const bool tabulated = std::any_of(mesh::mesh_candidates().begin(), mesh::mesh_candidates().end(), [&](auto& c) {
+      return row["level"] == c.parameters.level && std::stoi(row["refinement_factor"]) == c.parameters.refinement_factor &&
+             std::stoi(row["layers"]) == c.parameters.layers &&
+             row["section"] == mesh::MeshParameters::section_names()[static_cast<int>(c.parameters.section)];
+    });
+    EXPECT_TRUE(tabulated) << row["candidate"] << " was measured but is not in mesh_candidates()";
+  }
+}
+
+// For any target the pick is within it and no other coarser-than-fine candidate within it has fewer hexahedra; below
+// every measured error the pick is the fine level, and the reason says so.
+TEST(MeshChoice, PicksTheFewestHexahedraWithinTheTarget)
+{
+  const auto& candidates = mesh::mesh_candidates();
+  double smallest_error = 100.0;
+  for (std::size_t c = 0; c + 1 < candidates.size(); ++c)
+    smallest_error = std::min(smallest_error, candidates[c].error_percent);
+  for (double target : {100.0, 50.0, 20.0, 10.0, 5.0, 2.0, 1.0, smallest_error}) {
+    const auto choice = mesh::choose_mesh(target);
+    const auto picked = std::find_if(candidates.begin(), candidates.end(), [&](const auto& candidate) {
+      return candidate.parameters.level == choice.parameters.level &&
+             candidate.parameters.refinement_factor == choice.parameters.refinement_factor &&
+             candidate.parameters.layers == choice.parameters.layers &&
+             candidate.parameters.section == choice.parameters.section;
+    });
+    ASSERT_NE(picked, candidates.end()) << target;
+    EXPECT_LE(picked->error_percent, target);
+    for (std::size_t c = 0; c + 1 < candidates.size(); ++c)
+      if (candidates[c].error_percent <= target) {
+        EXPECT_GE(candidates[c].hexahedra, picked->hexahedra) << target;
+      }
+    EXPECT_NE(choice.reason.find(picked->label), std::string::npos) << choice.reason;
+  }
+  EXPECT_LE(mesh::choose_mesh(2.0).parameters.in_plane_factor(), 4);   // the medium level's equal-area run: 0.94 %
+  const auto finest = mesh::choose_mesh(0.5 * smallest_error);
+  EXPECT_EQ(finest.parameters.level, "fine");
+  EXPECT_NE(finest.reason.find("below every coarser mesh measured"), std::string::npos) << finest.reason;
+}
+
+// In a scene: level = auto resolves to a named level and says why; the keys it sets itself must be left alone.
+TEST(MeshChoice, AutoInASceneResolvesToANamedLevel)
+{
+  auto read = [](const std::string& entries) {
+    Teuchos::ParameterList valid;
+    mesh::MeshParameters::declare(valid);
+    auto user = parameters::read_xml_string("<ParameterList>" + entries + "</ParameterList>");
+    parameters::validate(user, valid);
+    return mesh::MeshParameters::from(user);
+  };
+  const auto chosen = read(R"(<Parameter name="level" type="string" value="auto"/>
+                              <Parameter name="target error" type="double" value="5"/>)");
+  EXPECT_NE(chosen.level, "auto");
+  EXPECT_EQ(chosen.target_error_percent, 5.0);
+  EXPECT_NE(chosen.choice.find("'Mesh/level' = auto picked"), std::string::npos) << chosen.choice;
+  EXPECT_TRUE(read(R"(<Parameter name="level" type="string" value="medium"/>)").choice.empty());
+  try {
+    read(R"(<Parameter name="level" type="string" value="auto"/><Parameter name="layers" type="int" value="6"/>)");
+    FAIL() << "auto with layers = 6 was accepted";
+  } catch (const parameters::InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("'layers'"), std::string::npos) << error.what();
+  }
+  EXPECT_THROW(read(R"(<Parameter name="level" type="string" value="auto"/>
+                       <Parameter name="target error" type="double" value="0"/>)"),
+               parameters::InputError);
 }
 
 TEST(Partition, BisectionBalancesAndCoversEverything)
