@@ -48,6 +48,9 @@ spatula_trilinos_target(Solvers NOX Stratimikos Belos Ifpack2 MueLu Thyra Tpetra
 
 # A Trilinos built with Kokkos' OpenMP backend (scripts/build-trilinos.sh) needs -fopenmp on every file that includes
 # Kokkos: read the backend from Kokkos' own configuration header (Debian's Trilinos is Serial only).
+# Looked up at every configure (not cached): a build directory reconfigured against another Trilinos_DIR must not keep
+# the first one's header.
+unset(SPATULA_KOKKOS_CONFIG_HEADER CACHE)
 find_file(SPATULA_KOKKOS_CONFIG_HEADER KokkosCore_config.h PATHS ${Kokkos_INCLUDE_DIRS} NO_DEFAULT_PATH)
 if(SPATULA_KOKKOS_CONFIG_HEADER)
   file(STRINGS "${SPATULA_KOKKOS_CONFIG_HEADER}" SPATULA_KOKKOS_OPENMP REGEX "^#define KOKKOS_ENABLE_OPENMP")
@@ -63,10 +66,13 @@ if(SPATULA_KOKKOS_CONFIG_HEADER)
 endif()
 # Kokkos threads per rank in the unit tests (OMP_NUM_THREADS stays 1 there for OpenBLAS and MUMPS): 2 where the
 # backend is threaded, so the kernels' atomics and reductions are exercised.
-if(SPATULA_KOKKOS_OPENMP)
-  set(SPATULA_TEST_KOKKOS_THREADS 2 CACHE STRING "Kokkos threads per rank in the unit tests")
+# Follows the backend at every configure unless given on the command line (-DSPATULA_TEST_KOKKOS_THREADS_OVERRIDE=n).
+if(SPATULA_TEST_KOKKOS_THREADS_OVERRIDE)
+  set(SPATULA_TEST_KOKKOS_THREADS ${SPATULA_TEST_KOKKOS_THREADS_OVERRIDE})
+elseif(SPATULA_KOKKOS_OPENMP)
+  set(SPATULA_TEST_KOKKOS_THREADS 2)
 else()
-  set(SPATULA_TEST_KOKKOS_THREADS 1 CACHE STRING "Kokkos threads per rank in the unit tests")
+  set(SPATULA_TEST_KOKKOS_THREADS 1)
 endif()
 
 # MUMPS (distributed direct solver): Trilinos links it as a TPL; the headers are plain Debian ones.

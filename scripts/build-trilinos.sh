@@ -9,8 +9,10 @@
 # cores. It installs what it needs with apt-get (ninja, ccache, dpkg-dev, compilers, MPI, BLAS/LAPACK, MUMPS, HDF5),
 # adds a deb-src line for bookworm main if there is none, and fetches the source with `apt-get source trilinos`
 # (Debian's patches applied). A build that is stopped goes on where it stopped when the script is run again (Ninja
-# and ccache keep the work); an installed prefix is left alone unless --force. Progress: a line per 2 % of the build
-# steps with the elapsed time; the total time at the end (also in <prefix>/BUILD-INFO.txt).
+# and ccache keep the work); an installed prefix is left alone unless --force, which reconfigures and rebuilds from a
+# fresh build tree (ccache makes the compiles cheap). Progress: a line per 2 % of the build steps with the elapsed
+# time; the total time at the end, summed over the calls of a resumed build (also in <prefix>/BUILD-INFO.txt).
+# Without root, pass --prefix and --work in directories you can write (e.g. under $HOME); apt-get then runs by sudo.
 #
 # Packages: Teuchos, Kokkos, KokkosKernels, Tpetra, Thyra, Stratimikos, NOX with LOCA, Belos, Ifpack2, MueLu and
 # Amesos2 (and what they require), MPI on, shared libraries, Release, no tests or examples. Kokkos: Serial and OpenMP,
@@ -35,7 +37,7 @@ while [ $# -gt 0 ]; do
     --cuda) CUDA=on; shift ;;
     --force) FORCE=1; shift ;;
     --configure-only) CONFIGURE_ONLY=1; shift ;;
-    -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,23p' "$0"; exit 0 ;;
     *) echo "build-trilinos.sh: unknown option '$1' (allowed: --prefix DIR, --work DIR, --jobs N, --cuda, --force, --configure-only)" >&2
        exit 2 ;;
   esac
@@ -50,6 +52,12 @@ if [ -f "$PREFIX/lib/cmake/Trilinos/TrilinosConfig.cmake" ] && [ "$FORCE" = 0 ];
   say "already installed in $PREFIX (--force rebuilds); configure the project with -DTrilinos_DIR=$PREFIX/lib/cmake/Trilinos"
   exit 0
 fi
+
+# Both directories must be writable (or creatable) before anything is installed or fetched.
+for directory in "$PREFIX" "$WORK"; do
+  parent=$directory; while [ ! -e "$parent" ]; do parent=$(dirname "$parent"); done
+  [ -w "$parent" ] || { echo "build-trilinos.sh: cannot write '$parent' (for '$directory'): run as root or pass --prefix and --work in directories you own" >&2; exit 2; }
+done
 
 SUDO=; [ "$(id -u)" = 0 ] || SUDO=sudo
 say "installing the build tools and libraries (apt-get)"
@@ -68,10 +76,15 @@ fi
 mkdir -p "$WORK"
 SOURCE=$(find "$WORK" -maxdepth 1 -type d -name 'trilinos-13.2*' | head -n 1)
 if [ -z "$SOURCE" ]; then
+  # Fetched and unpacked in a scratch directory and moved into place only when complete: a download or unpacking
+  # that was stopped is never taken for the source.
   say "fetching Debian's trilinos source package into $WORK"
-  (cd "$WORK" && apt-get source -qq trilinos >/dev/null)
-  SOURCE=$(find "$WORK" -maxdepth 1 -type d -name 'trilinos-13.2*' | head -n 1)
-  [ -n "$SOURCE" ] || { echo "build-trilinos.sh: apt-get source trilinos gave no trilinos-13.2* directory in $WORK" >&2; exit 1; }
+  rm -rf "$WORK/source.partial" && mkdir "$WORK/source.partial"
+  (cd "$WORK/source.partial" && apt-get source -qq trilinos >/dev/null)
+  FETCHED=$(find "$WORK/source.partial" -maxdepth 1 -type d -name 'trilinos-13.2*' | head -n 1)
+  [ -n "$FETCHED" ] || { echo "build-trilinos.sh: apt-get source trilinos gave no trilinos-13.2* directory" >&2; exit 1; }
+  mv "$FETCHED" "$WORK/" && rm -rf "$WORK/source.partial"
+  SOURCE="$WORK/$(basename "$FETCHED")"
 fi
 say "source: $SOURCE"
 
@@ -90,6 +103,12 @@ if [ "$CUDA" = on ]; then
 fi
 
 BUILD="$WORK/build-$VARIANT"
+# --force starts a fresh build tree unless the last one never got to install (a forced rebuild that was stopped, which
+# then goes on).
+if [ "$FORCE" = 1 ] && [ -f "$BUILD/.installed" ]; then
+  say "--force: removing the build tree $BUILD (the ccache stays)"
+  rm -rf "$BUILD" "$WORK/build-$VARIANT.seconds" "$WORK/build-$VARIANT.seconds.current"
+fi
 if [ ! -f "$BUILD/build.ninja" ]; then
   say "configuring ($VARIANT) in $BUILD"
   PACKAGES=(Teuchos Kokkos KokkosKernels Tpetra Thyra Stratimikos NOX Belos Ifpack2 MueLu Amesos2)
@@ -112,13 +131,18 @@ if [ "$CONFIGURE_ONLY" = 1 ]; then
 fi
 export CCACHE_DIR="$WORK/ccache" CCACHE_MAXSIZE=5G
 say "building with $JOBS jobs (log: $WORK/build-$VARIANT.log)"
+# The seconds of every call, so that a build stopped and resumed reports its total: each call keeps its elapsed time
+# in $SPENT.current at every progress line (a killed call thus counts to its last one), moved to $SPENT next time.
+SPENT="$WORK/build-$VARIANT.seconds"
+[ -f "$SPENT.current" ] && cat "$SPENT.current" >> "$SPENT" && rm -f "$SPENT.current"
 set +e
 NINJA_STATUS='[%f/%t] ' ninja -C "$BUILD" -j "$JOBS" install 2>&1 | tee "$WORK/build-$VARIANT.log" |
-  awk -v started="$STARTED" '
+  awk -v started="$STARTED" -v spent="$SPENT.current" '
     match($0, /^\[[0-9]+\/[0-9]+\]/) {
       split(substr($0, 2, RLENGTH - 2), n, "/")
       percent = int(100 * n[1] / n[2])
-      if (percent >= shown + 2) { shown = percent; printf("[build-trilinos %5ds] %3d %% (%d of %d steps)\n", systime() - started, percent, n[1], n[2]); fflush() }
+      if (percent >= shown + 2) { shown = percent; printf("[build-trilinos %5ds] %3d %% (%d of %d steps)\n", systime() - started, percent, n[1], n[2]); fflush()
+                                  print systime() - started > spent; close(spent) }
     }
     /error:|FAILED:/ { print; fflush() }'
 STATUS=${PIPESTATUS[0]}
@@ -127,8 +151,12 @@ if [ "$STATUS" != 0 ]; then
   echo "build-trilinos.sh: the build failed (exit $STATUS), see $WORK/build-$VARIANT.log; run the script again to go on" >&2
   exit "$STATUS"
 fi
-SECONDS_TAKEN=$(( $(date +%s) - STARTED ))
-printf 'Trilinos 13.2 (%s) from %s\nbuilt %s with %s jobs in %d s (this call; a resumed build counts only its last call)\n' \
-  "$VARIANT" "$SOURCE" "$(date -u +%Y-%m-%dT%H:%MZ)" "$JOBS" "$SECONDS_TAKEN" > "$PREFIX/BUILD-INFO.txt"
-say "installed in $PREFIX ($VARIANT) in ${SECONDS_TAKEN} s"
+rm -f "$SPENT.current"
+echo $(( $(date +%s) - STARTED )) >> "$SPENT"
+touch "$BUILD/.installed"
+CALLS=$(wc -l < "$SPENT")
+SECONDS_TAKEN=$(awk '{ total += $1 } END { print total }' "$SPENT")
+printf 'Trilinos 13.2 (%s) from %s\nbuilt %s with %s jobs in %d s over %d call(s) of the script\n' \
+  "$VARIANT" "$SOURCE" "$(date -u +%Y-%m-%dT%H:%MZ)" "$JOBS" "$SECONDS_TAKEN" "$CALLS" > "$PREFIX/BUILD-INFO.txt"
+say "installed in $PREFIX ($VARIANT) in ${SECONDS_TAKEN} s over $CALLS call(s)"
 say "configure the project with: cmake -S . -B build-openmp -DTrilinos_DIR=$PREFIX/lib/cmake/Trilinos"

@@ -68,15 +68,20 @@ def pull_off_summary(work, scene):
 def pad_slip(work, scene, at_u_z):
     """How far the adhering part of the pad has slid along the substrate in a pull-off: the median tangential travel,
     since the run's first field state, of the contact nodes still within 0.5 nm of the equilibrium gap at the field
-    state nearest to u_z = at_u_z. Returns (u_z of that state, median slip [nm], adhering nodes) or None without
-    field output."""
+    state nearest to u_z = at_u_z. Returns (u_z of that state, median slip [nm], adhering nodes), or None without
+    field output. What it measured is kept beside the curve in pad_slip.csv (archived with the run, which keeps no
+    fields), and read from there when the fields are gone."""
     import re
-    import h5py
-    import numpy
+    kept = os.path.join(work, scene, 'pad_slip.csv')
     path = os.path.join(work, scene, 'mesh.h5')
     states = os.path.join(work, scene, 'mesh_states.xmf')
     if not (os.path.exists(path) and os.path.exists(states)):
-        return None
+        if not os.path.exists(kept):
+            return None
+        row = next(csv.DictReader(open(kept)))
+        return float(row['state_u_z_nm']), float(row['median_slip_nm']), int(row['adhering_nodes'])
+    import h5py
+    import numpy
     times = [float(t) for t in re.findall(r'<Time Value="([^"]+)"', open(states).read())]
     if len(times) < 2:
         return None
@@ -91,4 +96,7 @@ def pad_slip(work, scene, at_u_z):
     if not adhering.any():
         return None
     slip = numpy.hypot(then[:, 0] - first[:, 0], then[:, 1] - first[:, 1])[adhering]
-    return times[nearest], float(numpy.median(slip)), int(adhering.sum())
+    measured = times[nearest], float(numpy.median(slip)), int(adhering.sum())
+    with open(kept, 'w') as out:
+        out.write('state_u_z_nm,median_slip_nm,adhering_nodes\n' + ','.join(f'{v:.6g}' for v in measured) + '\n')
+    return measured

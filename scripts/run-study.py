@@ -183,7 +183,7 @@ def complete(work, scene):
 # work directory (a new machine, a cleaned disk): its curve, scene, mesh summary and log, and the checkpoints of a
 # rotation that pull-offs start from. A later study restores them into the work directory instead of running again.
 ARCHIVE = os.path.join(ROOT, 'docs', 'study-runs')
-KEPT_FILES = ('curve.csv', 'scene.xml', 'mesh_summary.csv', 'mesh_summary.txt', '.spatula-output')
+KEPT_FILES = ('curve.csv', 'scene.xml', 'mesh_summary.csv', 'mesh_summary.txt', '.spatula-output', 'pad_slip.csv')
 
 
 def archiving():
@@ -380,14 +380,28 @@ def run_all(runs, work, jobs):
     return failed
 
 
+def rotation_curve(work):
+    """(rows, source) of a level's peel by rotation: the peel-rotation run, or where a level has none (the fine
+    level ran only the pull-off at 60 deg) the rotation stage of its pull-off at 60 deg; (None, None) without either."""
+    if complete(work, 'peel-rotation') or os.path.exists(os.path.join(work, 'peel-rotation.incomplete')):
+        return read_curve(work, 'peel-rotation'), 'peel-rotation'
+    if started(work, 'pull-off-60'):
+        rows = [r for r in read_curve(work, 'pull-off-60') if r['stage'] == 'rotation']
+        if len(rows) > 1:
+            return rows, 'pull-off-60'
+    return None, None
+
+
 def table4(work):
-    rows = read_curve(work, 'peel-rotation')
+    rows, source = rotation_curve(work)
     columns = ['Pi_ext_per_Pi_c0', 'Pi_int_per_Pi_c0', 'Pi_sa_per_Pi_c0', 'balance_error_per_Pi_c0', 'M_y_nNnm']
     out = []
     for theta in (30, 60, 90, 120):
         values = interpolate(rows, 'theta_y_deg', theta, columns)
         if values:
             out.append((str(theta), theta, values, PAPER_TABLE4[theta]))
+    if source != 'peel-rotation':   # a rotation to 60 deg only: no detachment, and the first instability may be
+        return out, rows             # before its curve's first state (a resumed run)
     # The first instability: the first jump after which the moment dropped by more than 10 %.
     for i, row in enumerate(rows):
         if row['after_jump'] == 1 and row['M_y_nNnm'] < 0.9 * rows[i - 1]['M_y_nNnm']:
@@ -412,9 +426,13 @@ def write_tables(work, scenes, level):
     tables = os.path.join(work, 'tables')
     os.makedirs(tables, exist_ok=True)
     markdown = []
-    if complete(work, 'peel-rotation') or os.path.exists(os.path.join(work, 'peel-rotation.incomplete')):
-        entries, _ = table4(work)
+    rotation_rows, rotation_source = rotation_curve(work)
+    if rotation_rows:
+        entries, rows = table4(work)
         markdown.append(f'### Table 4: peeling by rotation (values / Pi_c0) ({level} mesh)\n')
+        if rotation_source != 'peel-rotation':
+            markdown.append(f'From the rotation that precedes the pull-off at 60 deg (this level has no peel to '
+                            f'detachment; its curve starts at theta_y = {rows[0]["theta_y_deg"]:.2f} deg).\n')
         markdown.append('| theta_y | ours: theta_y [deg] | Pi_ext ours / paper | Pi_int ours / paper | Pi_sa ours / paper '
                         '| balance error |')
         markdown.append('|---|---|---|---|---|---|')
@@ -431,7 +449,6 @@ def write_tables(work, scenes, level):
         markdown.append('')
         # The same energies in units of the paper's Pi_c0 (its contact area is 1.4 % smaller than ours): the
         # deformation energies are absolute, so this is the like-for-like comparison of Pi_ext and Pi_int.
-        rows = read_curve(work, 'peel-rotation')
         row = next(r for r in rows if r['Pi_ext_per_Pi_c0'] > 0.01 and abs(r['M_y_per_ER0^3']) > 0.01)
         young_r0_cubed = row['M_y_nNnm'] / row['M_y_per_ER0^3']   # E R0^3 in nN nm = 1e-18 J
         ours = row['Pi_ext_1e-18J'] / row['Pi_ext_per_Pi_c0'] / young_r0_cubed
@@ -505,8 +522,16 @@ def write_tables(work, scenes, level):
         runs = sorted((float(s.split('-')[-1]), s) for s in summaries if s.startswith(prefix))
         if 'pull-off-60' in summaries:
             runs = sorted(runs + [(base, 'pull-off-60')])
-        if len(runs) > 1:
+        if len(runs) > 1 or (runs and level == LEVELS[-1]):
             markdown.append(f'### {title} ({level} mesh)\n')
+            if len(runs) == 1:
+                markdown.append('Only the factor-1 cell (the pull-off at 60 deg): the sweep was not run at this level.\n')
+            own = [r for r in read_curve(work, 'pull-off-60') if r['stage'] == 'rotation'] \
+                if 'pull-off-60' in summaries else []   # one state where it starts from the peel run's checkpoint
+            first = own[0]['theta_y_deg'] if len(own) > 1 else 0.0
+            if first > 10.0:   # its own rotation, resumed from a checkpoint: the curve holds only what came after
+                markdown.append(f'The pull-off at 60 deg\'s curve starts at theta_y = {first:.2f} deg (a run resumed '
+                                'from a checkpoint): jumps of its rotation before that are not counted.\n')
             markdown.append('The path of each point (the sweep compares like with like only if they follow the same '
                             'kind): Pi_sa / Pi_c0 when the lift begins (how much adhesion the rotation to 60 deg '
                             'already gave up) and the jumps in the rotation and in the lift.\n')
@@ -595,8 +620,11 @@ def error_bars(results):
         for key, label in quantities:
             row(scene, label, {level: s[key] for level, s in have.items()}, differ)
             rows += 1
-    rotation = {level: read_curve(directory, 'peel-rotation') for level, (directory, _) in results.items()
-                if complete(directory, 'peel-rotation')}
+    sources = {level: rotation_curve(directory) for level, (directory, _) in results.items()}
+    rotation = {level: rows for level, (rows, _) in sources.items() if rows}
+    borrowed = [level for level, (rows, source) in sources.items() if rows and source != 'peel-rotation']
+    note = '; ' + '; '.join(f'{level}: the rotation before the pull-off at 60 deg, whose curve starts at theta_y = '
+                            f'{rotation[level][0]["theta_y_deg"]:.2f} deg' for level in borrowed) if borrowed else ''
     if len(rotation) >= 2:
         for theta in (30.0, 60.0, 90.0):
             for key, label in (('Pi_ext_per_Pi_c0', 'Pi_ext / Pi_c0'), ('Pi_int_per_Pi_c0', 'Pi_int / Pi_c0'),
@@ -608,7 +636,8 @@ def error_bars(results):
                         by_level[level] = point[key]
                 if len(by_level) < 2:
                     continue
-                row(f'peel-rotation at {theta:g} deg', label, by_level)
+                row(f'peel-rotation at {theta:g} deg', label, by_level,
+                    note if any(level in by_level for level in borrowed) else '')
                 rows += 1
     return '\n'.join(lines) + '\n' if rows else ''
 
