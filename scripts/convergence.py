@@ -50,21 +50,19 @@ def richardson(by_level):
     values = [by_level[level] for level in levels]
     sizes = [ELEMENT_SIZE[level] for level in levels]
     finest, next_finest = values[-1], values[-2]
+    magnitudes = [abs(v) for v in values]
+    path_change = (f'; **not reliable**: the levels differ by more than a factor {PATH_CHANGE:g} (a run followed '
+                   'another path)') if min(magnitudes) > 0.0 and max(magnitudes) > PATH_CHANGE * min(magnitudes) else ''
     order, remark = ASSUMED_ORDER, f'order {ASSUMED_ORDER:g} assumed (two levels)'
     if len(levels) >= 3:
         order = observed_order(values[-3:], sizes[-3:])
         if order is None:
             return finest, abs(finest - next_finest), None, ('not in the asymptotic range (the changes between levels '
                                                              'do not shrink monotonically): estimate = last change'
-                                                             + layers_remark(levels))
+                                                             + layers_remark(levels) + path_change)
         remark = f'order {order:.2f} observed'
     ratio = sizes[-2] / sizes[-1]
     correction = (finest - next_finest) / (ratio ** order - 1.0)
     if abs(correction) > 0.5 * abs(finest):
         remark += '; not reliable (the estimate exceeds half the value)'
-    remark += layers_remark(levels)
-    magnitudes = [abs(v) for v in values]
-    if min(magnitudes) > 0.0 and max(magnitudes) > PATH_CHANGE * min(magnitudes):
-        remark += (f'; **not reliable**: the levels differ by more than a factor {PATH_CHANGE:g} (the coarser run '
-                   'followed another path)')
-    return finest, abs(correction), finest + correction, remark
+    return finest, abs(correction), finest + correction, remark + layers_remark(levels) + path_change

@@ -98,5 +98,5 @@ def pad_slip(work, scene, at_u_z):
     slip = numpy.hypot(then[:, 0] - first[:, 0], then[:, 1] - first[:, 1])[adhering]
     measured = times[nearest], float(numpy.median(slip)), int(adhering.sum())
     with open(kept, 'w') as out:
-        out.write('state_u_z_nm,median_slip_nm,adhering_nodes\n' + ','.join(f'{v:.6g}' for v in measured) + '\n')
+        out.write(f'state_u_z_nm,median_slip_nm,adhering_nodes\n{measured[0]:.6g},{measured[1]:.6g},{measured[2]:d}\n')
     return measured

@@ -195,6 +195,11 @@ def archive(work, level, scene):
     """Copies the complete run's kept files into ARCHIVE/<level>/<scene>/."""
     source, kept = os.path.join(work, level, scene), os.path.join(ARCHIVE, level, scene)
     os.makedirs(kept, exist_ok=True)
+    if scene in {name for name, _, _ in STICTION_RUNS}:   # the slip needs the fields, which are not kept
+        try:
+            pad_slip(os.path.join(work, level), scene, pull_off_summary(os.path.join(work, level), scene)['u_z_at_P_max'])
+        except ImportError as error:
+            print(f'{scene}: pad slip not measured ({error}); the archive keeps no fields to measure it later')
     names = KEPT_FILES + (('checkpoints.h5',) if scene in DEPENDS.values() else ())
     for name in names:
         if os.path.exists(os.path.join(source, name)):
@@ -383,7 +388,7 @@ def run_all(runs, work, jobs):
 def rotation_curve(work):
     """(rows, source) of a level's peel by rotation: the peel-rotation run, or where a level has none (the fine
     level ran only the pull-off at 60 deg) the rotation stage of its pull-off at 60 deg; (None, None) without either."""
-    if complete(work, 'peel-rotation') or os.path.exists(os.path.join(work, 'peel-rotation.incomplete')):
+    if complete(work, 'peel-rotation') or os.path.exists(os.path.join(work, 'peel-rotation.incomplete', 'curve.csv')):
         return read_curve(work, 'peel-rotation'), 'peel-rotation'
     if started(work, 'pull-off-60'):
         rows = [r for r in read_curve(work, 'pull-off-60') if r['stage'] == 'rotation']
@@ -522,14 +527,15 @@ def write_tables(work, scenes, level):
         runs = sorted((float(s.split('-')[-1]), s) for s in summaries if s.startswith(prefix))
         if 'pull-off-60' in summaries:
             runs = sorted(runs + [(base, 'pull-off-60')])
-        if len(runs) > 1 or (runs and level == LEVELS[-1]):
+        if len(runs) > 1 or (runs == [(base, 'pull-off-60')] and level == LEVELS[-1]):
             markdown.append(f'### {title} ({level} mesh)\n')
             if len(runs) == 1:
                 markdown.append('Only the factor-1 cell (the pull-off at 60 deg): the sweep was not run at this level.\n')
             own = [r for r in read_curve(work, 'pull-off-60') if r['stage'] == 'rotation'] \
                 if 'pull-off-60' in summaries else []   # one state where it starts from the peel run's checkpoint
             first = own[0]['theta_y_deg'] if len(own) > 1 else 0.0
-            if first > 10.0:   # its own rotation, resumed from a checkpoint: the curve holds only what came after
+            if first > 0.0 and own[0]['Pi_ext_1e-18J'] > 0.0:   # its own rotation resumed from a checkpoint (a fresh
+                # one starts unloaded): the curve holds only what came after
                 markdown.append(f'The pull-off at 60 deg\'s curve starts at theta_y = {first:.2f} deg (a run resumed '
                                 'from a checkpoint): jumps of its rotation before that are not counted.\n')
             markdown.append('The path of each point (the sweep compares like with like only if they follow the same '
@@ -786,7 +792,8 @@ def main():
         parser.error('--set needs its own --work directory: runs made with other settings must not mix with the '
                      "study's own in " + parser.get_default('work'))
     OVERRIDES.extend(arguments.set)
-    unknown = {o[0] for o in arguments.set if o[0]} - {scene for _, scene in planned_runs(arguments.study, None)}
+    unknown = {o[0] for o in arguments.set if o[0]} - {scene for _, scene in planned_runs(arguments.study,
+                                                                                             arguments.mesh)}
     if unknown:
         parser.error(f"--set names scene(s) not in study {arguments.study}: {', '.join(sorted(unknown))}")
     if not os.path.exists(APP):
