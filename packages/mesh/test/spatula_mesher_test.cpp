@@ -302,6 +302,25 @@ TEST(MeshChoice, TheTableCountsTheMeshersHexahedra)
   EXPECT_EQ(mesh::mesh_candidates().back().error_percent, 0.0);
 }
 
+namespace {
+
+// Whether two descriptions name the same mesh: the four keys the candidates differ in.
+bool same_mesh(const mesh::MeshParameters& a, const mesh::MeshParameters& b)
+{
+  return a.level == b.level && a.refinement_factor == b.refinement_factor && a.layers == b.layers &&
+         a.section == b.section;
+}
+
+// A row of docs/mesh-choice.csv describes this mesh.
+bool same_mesh(std::map<std::string, std::string>& row, const mesh::MeshParameters& p)
+{
+  return row["level"] == p.level && std::stoi(row["refinement_factor"]) == p.refinement_factor &&
+         std::stoi(row["layers"]) == p.layers &&
+         row["section"] == parameters::name_of(p.section, mesh::MeshParameters::section_names());
+}
+
+}  // namespace
+
 // The table's errors are those benchmarks/mesh_choice.py measured (docs/mesh-choice.csv), to their two decimals, and
 // every mesh measured there is in the table (so the picks docs/mesh-choice.md lists are the app's).
 TEST(MeshChoice, TheTableIsTheMeasuredOne)
@@ -323,22 +342,15 @@ TEST(MeshChoice, TheTableIsTheMeasuredOne)
   }
   for (const auto& candidate : mesh::mesh_candidates()) {
     const auto& p = candidate.parameters;
-    const auto measured = std::find_if(rows.begin(), rows.end(), [&](auto& row) {
-      return row["level"] == p.level && std::stoi(row["refinement_factor"]) == p.refinement_factor &&
-             std::stoi(row["layers"]) == p.layers &&
-             row["section"] == mesh::MeshParameters::section_names()[static_cast<int>(p.section)];
-    });
+    const auto measured = std::find_if(rows.begin(), rows.end(), [&](auto& row) { return same_mesh(row, p); });
     ASSERT_NE(measured, rows.end()) << candidate.label << " is not in " << path;
     EXPECT_EQ(std::stoll((*measured).at("hexahedra")), candidate.hexahedra) << candidate.label;
     const double error = std::stod((*measured).at("largest_error_pct"));
     EXPECT_NEAR(candidate.error_percent, error, 0.006) << candidate.label;   // the CSV's two decimals
   }
   for (auto& row : rows) {
-    const bool tabulated = std::any_of(mesh::mesh_candidates().begin(), mesh::mesh_candidates().end(), [&](auto& c) {
-      return row["level"] == c.parameters.level && std::stoi(row["refinement_factor"]) == c.parameters.refinement_factor &&
-             std::stoi(row["layers"]) == c.parameters.layers &&
-             row["section"] == mesh::MeshParameters::section_names()[static_cast<int>(c.parameters.section)];
-    });
+    const bool tabulated = std::any_of(mesh::mesh_candidates().begin(), mesh::mesh_candidates().end(),
+                                       [&](auto& c) { return same_mesh(row, c.parameters); });
     EXPECT_TRUE(tabulated) << row["candidate"] << " was measured but is not in mesh_candidates()";
   }
 }
@@ -354,10 +366,7 @@ TEST(MeshChoice, PicksTheFewestHexahedraWithinTheTarget)
   for (double target : {100.0, 50.0, 20.0, 10.0, 5.0, 2.0, 1.0, smallest_error}) {
     const auto choice = mesh::choose_mesh(target);
     const auto picked = std::find_if(candidates.begin(), candidates.end(), [&](const auto& candidate) {
-      return candidate.parameters.level == choice.parameters.level &&
-             candidate.parameters.refinement_factor == choice.parameters.refinement_factor &&
-             candidate.parameters.layers == choice.parameters.layers &&
-             candidate.parameters.section == choice.parameters.section;
+      return same_mesh(candidate.parameters, choice.parameters);
     });
     ASSERT_NE(picked, candidates.end()) << target;
     EXPECT_LE(picked->error_percent, target);
