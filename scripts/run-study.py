@@ -386,14 +386,23 @@ def run_all(runs, work, jobs):
 
 
 def rotation_curve(work):
-    """(rows, source) of a level's peel by rotation: the peel-rotation run, or where a level has none (the fine
-    level ran only the pull-off at 60 deg) the rotation stage of its pull-off at 60 deg; (None, None) without either."""
-    if complete(work, 'peel-rotation') or os.path.exists(os.path.join(work, 'peel-rotation.incomplete', 'curve.csv')):
-        return read_curve(work, 'peel-rotation'), 'peel-rotation'
+    """(rows, source) of a level's peel by rotation: the peel-rotation run ('peel-rotation'); where that run restarted
+    from a checkpoint of the rotation that precedes the pull-off at 60 deg (the fine level's, run in segments), that
+    rotation's states before the restart and then the run's ('pull-off-60 + peel-rotation'); where a level has no
+    peel-rotation (the fine level ran only the pull-off at 60 deg) the rotation stage of its pull-off at 60 deg
+    ('pull-off-60'); (None, None) without either."""
+    earlier = None
     if started(work, 'pull-off-60'):
-        rows = [r for r in read_curve(work, 'pull-off-60') if r['stage'] == 'rotation']
-        if len(rows) > 1:
-            return rows, 'pull-off-60'
+        earlier = [r for r in read_curve(work, 'pull-off-60') if r['stage'] == 'rotation']
+        earlier = earlier if len(earlier) > 1 else None
+    if complete(work, 'peel-rotation') or os.path.exists(os.path.join(work, 'peel-rotation.incomplete', 'curve.csv')):
+        rows = read_curve(work, 'peel-rotation')
+        if earlier and rows and rows[0]['step'] > 0 and rows[0]['theta_y_deg'] > earlier[0]['theta_y_deg']:
+            start = rows[0]['theta_y_deg']
+            return [r for r in earlier if r['theta_y_deg'] < start - 1e-9] + rows, 'pull-off-60 + peel-rotation'
+        return rows, 'peel-rotation'
+    if earlier:
+        return earlier, 'pull-off-60'
     return None, None
 
 
@@ -405,10 +414,11 @@ def table4(work):
         values = interpolate(rows, 'theta_y_deg', theta, columns)
         if values:
             out.append((str(theta), theta, values, PAPER_TABLE4[theta]))
-    if source != 'peel-rotation':   # a rotation to 60 deg only: no detachment, and the first instability may be
-        return out, rows             # before its curve's first state (a resumed run)
-    # The first instability: the first jump after which the moment dropped by more than 10 %.
-    for i, row in enumerate(rows):
+    if source == 'pull-off-60':   # a rotation to 60 deg only: no detachment
+        return out, rows
+    # The first instability: the first jump after which the moment dropped by more than 10 %; only where the curve
+    # starts at the undeformed state (a curve that starts from a restart may begin after it).
+    for i, row in enumerate(rows if rows[0]['step'] == 0 else []):
         if row['after_jump'] == 1 and row['M_y_nNnm'] < 0.9 * rows[i - 1]['M_y_nNnm']:
             out.insert(1, ('31- (before the first drop)', rows[i - 1]['theta_y_deg'], rows[i - 1], PAPER_TABLE4['31-']))
             out.insert(2, ('31+ (after it)', row['theta_y_deg'], row, PAPER_TABLE4['31+']))
@@ -435,9 +445,13 @@ def write_tables(work, scenes, level):
     if rotation_rows:
         entries, rows = table4(work)
         markdown.append(f'### Table 4: peeling by rotation (values / Pi_c0) ({level} mesh)\n')
-        if rotation_source != 'peel-rotation':
+        if rotation_source == 'pull-off-60':
             markdown.append(f'From the rotation that precedes the pull-off at 60 deg (this level has no peel to '
                             f'detachment; its curve starts at theta_y = {rows[0]["theta_y_deg"]:.2f} deg).\n')
+        elif rotation_source != 'peel-rotation':
+            markdown.append(f'From the rotation that precedes the pull-off at 60 deg up to the checkpoint the '
+                            f'peel-rotation run restarted from, then that run; the curve starts at theta_y = '
+                            f'{rows[0]["theta_y_deg"]:.2f} deg, so the first instability is not in it.\n')
         markdown.append('| theta_y | ours: theta_y [deg] | Pi_ext ours / paper | Pi_int ours / paper | Pi_sa ours / paper '
                         '| balance error |')
         markdown.append('|---|---|---|---|---|---|')
@@ -547,7 +561,7 @@ def write_tables(work, scenes, level):
             for factor, scene in runs:
                 s = summaries[scene]
                 rotation_jumps = s['jumps_in_rotation']
-                if scene == 'pull-off-60' and complete(work, 'peel-rotation'):   # its rotation is the peel run's
+                if scene == 'pull-off-60' and rotation_source == 'peel-rotation':   # its rotation is the peel run's
                     rotation_jumps = sum(1 for r in read_curve(work, 'peel-rotation')
                                          if r['after_jump'] and r['theta_y_deg'] <= 60.0 + 1e-9)
                 markdown.append(f'| {factor:g} | {s["P_max_nN"]:.2f} | {s["delta_u_z_nm"]:.0f} | {s["delta_Pi_ext_1e-18J"]:.0f} '
@@ -629,8 +643,11 @@ def error_bars(results):
     sources = {level: rotation_curve(directory) for level, (directory, _) in results.items()}
     rotation = {level: rows for level, (rows, _) in sources.items() if rows}
     borrowed = [level for level, (rows, source) in sources.items() if rows and source != 'peel-rotation']
-    note = '; ' + '; '.join(f'{level}: the rotation before the pull-off at 60 deg, whose curve starts at theta_y = '
-                            f'{rotation[level][0]["theta_y_deg"]:.2f} deg' for level in borrowed) if borrowed else ''
+    note = '; ' + '; '.join(f'{level}: the rotation before the pull-off at 60 deg'
+                            + (', then the peel-rotation run restarted from its checkpoint' if sources[level][1] !=
+                               'pull-off-60' else '') +
+                            f', whose curve starts at theta_y = {rotation[level][0]["theta_y_deg"]:.2f} deg'
+                            for level in borrowed) if borrowed else ''
     if len(rotation) >= 2:
         for theta in (30.0, 60.0, 90.0):
             for key, label in (('Pi_ext_per_Pi_c0', 'Pi_ext / Pi_c0'), ('Pi_int_per_Pi_c0', 'Pi_int / Pi_c0'),
@@ -655,8 +672,8 @@ def plots(results, directory):
     import matplotlib.pyplot as plt
     pictures = []
     finest_first = [level for level in reversed(LEVELS) if level in results]
-    peels = [(level, read_curve(results[level][0], 'peel-rotation')) for level in finest_first
-             if complete(results[level][0], 'peel-rotation')]
+    peels = [(level, rotation_curve(results[level][0])) for level in finest_first]
+    peels = [(level, rows) for level, (rows, source) in peels if rows and source != 'pull-off-60']
     if peels:
         fig, (axis, energy) = plt.subplots(1, 2, figsize=(12, 4.2))
         for index, (level, rows) in enumerate(peels):
