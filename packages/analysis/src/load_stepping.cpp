@@ -175,116 +175,158 @@ discretization::MasterControl LoadPath::spatula_control(Master controlled, bool 
   return control;
 }
 
+// The state of one advance(): where the path is, the next increment, and what the failed attempts since the last
+// converged state say.
+struct LoadPath::Stepping {
+  Master controlled;
+  const char* name;                        // of the controlled load, for the log
+  discretization::MasterControl control;   // which masters are prescribed
+  const StepParameters& steps;
+  double unit, direction, smallest;   // smallest: the minimum increment (less a rounding margin)
+  double value, increment;            // the load reached and the next increment
+  FailedLoad failed;
+  int failures = 0;       // failed attempts in a row from the current converged state
+  bool refused = false;   // an early descent was refused at refused_load, not yet passed
+  double refused_load = 0.0;
+};
+
 std::optional<Failure> LoadPath::advance(Master controlled, double target, discretization::MasterControl control,
                                          const StepParameters& steps, double unit, const Callback& on_point)
 {
   auto& system = model_.system();
   control.prescribed[static_cast<int>(controlled)] = true;
   system.set_control(control);
-  const char* name = load_name(controlled);
-  double value = system.master(*x_, controlled);
-  double increment = steps.initial * unit;
-  previous_increment_ = older_increment_ = 0.0;   // no predictor across a change of the controlled load
+  const double value = system.master(*x_, controlled);
   const double direction = target >= value ? 1.0 : -1.0;
-  auto trial = system.create_vector();
-  FailedLoad failed(direction, steps.minimum * unit, steps.cut);
+  const double smallest = steps.minimum * unit * (1 - 1e-12);
+  Stepping stepping{controlled, load_name(controlled), control, steps, unit, direction, smallest, value,
+                    steps.initial * unit, FailedLoad(direction, steps.minimum * unit, steps.cut)};
+  previous_increment_ = older_increment_ = 0.0;   // no predictor across a change of the controlled load
   if (resumed_control_) {   // a resumed run goes on where the stopped one was
-    if (resumed_control_->increment > 0.0) increment = resumed_control_->increment;
-    failed.restore(*resumed_control_);
+    if (resumed_control_->increment > 0.0) stepping.increment = resumed_control_->increment;
+    stepping.failed.restore(*resumed_control_);
     resumed_control_.reset();
   }
-  const double smallest = steps.minimum * unit * (1 - 1e-12);
-  int failures = 0;                    // failed attempts in a row from the current converged state
-  bool refused = false;                // an early descent was refused at refused_load, not yet passed
-  double refused_load = 0.0;
-  while (!detached_ && direction * (target - value) > 1e-12 * std::max(1.0, std::abs(target))) {
-    increment = failed.limit(std::min(increment, direction * (target - value)), value);
-    const double load = value + direction * increment;
-    predict(*trial, controlled, load, increment, steps.predictor);
+  auto trial = system.create_vector();
+  while (!detached_ && direction * (target - stepping.value) > 1e-12 * std::max(1.0, std::abs(target))) {
+    stepping.increment =
+        stepping.failed.limit(std::min(stepping.increment, direction * (target - stepping.value)), stepping.value);
+    const double load = stepping.value + direction * stepping.increment;
+    predict(*trial, controlled, load, stepping.increment, steps.predictor);
     std::ostringstream table;
-    const auto result = newton_.solve(*trial, tables_ ? &table : nullptr, failed.known());
+    const auto result = newton_.solve(*trial, tables_ ? &table : nullptr, stepping.failed.known());
     if (!result.converged) {
-      if (log_) *log_ << table.str() << "  step to " << name << " = " << load_text(load / unit) << " failed ("
-                      << result.failure << ")";
-      ++failures;
-      // Not where the cut leaves the smallest increment: the jump there descends from the same state anyway.
-      const bool descend = !refused && jump_.descend_after_failures > 0 && failures >= jump_.descend_after_failures &&
-                           past_folds_ == PastFolds::jump && jump_.step_balance_tolerance > 0.0 &&
-                           increment * steps.cut >= smallest;
-      if (descend) {
-        if (log_) *log_ << "; energy descent at this load\n";
-        if (auto point = descend_early(controlled, load, *trial)) {   // an ordinary step after all
-          value = load;
-          failed.reached(value);
-          failures = 0;
-          point->step_control.increment = increment;
-          failed.save(point->step_control);
-          take_step(*trial, *point, increment, "", on_point);
-          continue;
-        }
-        refused = true;   // a snap proper ahead (or no state the descent could confirm): bisect towards it
-        refused_load = load;
-      }
-      if (log_) *log_ << (descend ? "  " : "; ") << "cutting the increment\n";
-      failed.failed(load);
-      increment *= steps.cut;
-      if (increment < smallest) {   // no equilibrium near the last one: past the fold, or stop
-        const double unreached = value + direction * increment / steps.cut;
-        auto beyond = pass_fold(controlled, unreached, control, direction, increment / steps.cut, unit, result.failure,
-                                on_point);
-        if (auto* failure = std::get_if<Failure>(&beyond)) return *failure;
-        value = std::get<double>(beyond);
-        failed.forget();
-        failures = 0;
-        refused = false;
-        increment = steps.initial * unit;   // on a new branch: accept() has started the predictor afresh
-      }
-      if (!steps.predict_after_failure) previous_increment_ = older_increment_ = 0.0;
+      if (auto failure = after_failed_attempt(stepping, load, *trial, result.failure, table.str(), on_point))
+        return failure;
       continue;
     }
     const int iterations = result.iterations.empty() ? 0 : result.iterations.back().iteration;
     const int pivots = result.iterations.empty() ? -1 : result.iterations.back().negative_pivots;
     auto point = measure(*trial, iterations, pivots);
-    // The energy the step released: near zero on a smooth path; large when Newton crossed a snap within the step
-    // and landed on another branch.
-    const double released = released_energy(point);
-    if (jump_.step_balance_tolerance > 0.0 && std::abs(released) > jump_.step_balance_tolerance) {
-      if (increment * steps.cut >= smallest) {
-        if (log_) *log_ << table.str() << "  step to " << name << " = " << load_text(load / unit)
-                        << " converged on another branch (the step released " << load_text(2.0 * released)
-                        << " nN nm, full spatula): a snap within the step; cutting the increment\n";
-        failed.failed(load);
-        increment *= steps.cut;
-        if (!steps.predict_after_failure) previous_increment_ = older_increment_ = 0.0;
-        continue;
-      }
-      if (past_folds_ == PastFolds::stop) {
-        Failure failure;
-        failure.step = next_step();
-        failure.load = load / unit;
-        failure.smallest_increment = increment / unit;
-        failure.reason = "a snap within the smallest step (it released " + load_text(2.0 * released) +
-                         " nN nm, full spatula) and instabilities are set to stop";
-        return failure;
-      }
-      point.after_jump = true;   // the smallest step still crosses the snap: it is the jump
-      point.released = released;
-      point.dissipated += released;
-      if (log_) *log_ << "  snap within the smallest step to " << name << " = " << load_text(load / unit)
-                      << ": counted as a jump, released " << load_text(2.0 * released) << " nN nm (full spatula)\n";
-    }
-    const double taken = increment;
-    value += direction * increment;
-    failed.reached(value);
-    failures = 0;
-    if (refused && direction * (value - refused_load) >= -1e-12 * std::max(1.0, std::abs(refused_load)))
-      refused = false;
-    if (iterations <= steps.easy_iterations) increment = std::min(increment * steps.growth, steps.maximum * unit);
-    point.step_control.increment = increment;
-    failed.save(point.step_control);
-    take_step(*trial, point, taken, table.str(), on_point);
+    const auto snap = crossed_snap(stepping, load, point, table.str());
+    if (const auto* failure = std::get_if<Failure>(&snap)) return *failure;
+    if (std::get<bool>(snap)) continue;   // cut back: the step is tried again, shorter
+    take_converged_step(stepping, *trial, point, iterations, table.str(), on_point);
   }
   return std::nullopt;
+}
+
+std::optional<Failure> LoadPath::after_failed_attempt(Stepping& stepping, double load, Vector& trial,
+                                                      const std::string& newton_failure, const std::string& table,
+                                                      const Callback& on_point)
+{
+  if (log_)
+    *log_ << table << "  step to " << stepping.name << " = " << load_text(load / stepping.unit) << " failed ("
+          << newton_failure << ")";
+  ++stepping.failures;
+  // Not where the cut leaves the smallest increment: the jump there descends from the same state anyway.
+  const bool descend = !stepping.refused && jump_.descend_after_failures > 0 &&
+                       stepping.failures >= jump_.descend_after_failures && past_folds_ == PastFolds::jump &&
+                       jump_.step_balance_tolerance > 0.0 &&
+                       stepping.increment * stepping.steps.cut >= stepping.smallest;
+  if (descend) {
+    if (log_) *log_ << "; energy descent at this load\n";
+    if (auto point = descend_early(stepping.controlled, load, trial)) {   // an ordinary step after all
+      stepping.value = load;
+      stepping.failed.reached(stepping.value);
+      stepping.failures = 0;
+      point->step_control.increment = stepping.increment;
+      stepping.failed.save(point->step_control);
+      take_step(trial, *point, stepping.increment, "", on_point);
+      return std::nullopt;
+    }
+    stepping.refused = true;   // a snap proper ahead (or no state the descent could confirm): bisect towards it
+    stepping.refused_load = load;
+  }
+  if (log_) *log_ << (descend ? "  " : "; ") << "cutting the increment\n";
+  stepping.failed.failed(load);
+  stepping.increment *= stepping.steps.cut;
+  if (stepping.increment < stepping.smallest) {   // no equilibrium near the last one: past the fold, or stop
+    const double unreached = stepping.value + stepping.direction * stepping.increment / stepping.steps.cut;
+    auto beyond = pass_fold(stepping.controlled, unreached, stepping.control, stepping.direction,
+                            stepping.increment / stepping.steps.cut, stepping.unit, newton_failure, on_point);
+    if (auto* failure = std::get_if<Failure>(&beyond)) return *failure;
+    stepping.value = std::get<double>(beyond);
+    stepping.failed.forget();
+    stepping.failures = 0;
+    stepping.refused = false;
+    // on a new branch: accept() has started the predictor afresh
+    stepping.increment = stepping.steps.initial * stepping.unit;
+  }
+  if (!stepping.steps.predict_after_failure) previous_increment_ = older_increment_ = 0.0;
+  return std::nullopt;
+}
+
+std::variant<bool, Failure> LoadPath::crossed_snap(Stepping& stepping, double load, LoadPoint& point,
+                                                   const std::string& table)
+{
+  // The energy the step released: near zero on a smooth path; large when Newton crossed a snap within the step
+  // and landed on another branch.
+  const double released = released_energy(point);
+  if (!(jump_.step_balance_tolerance > 0.0 && std::abs(released) > jump_.step_balance_tolerance)) return false;
+  if (stepping.increment * stepping.steps.cut >= stepping.smallest) {
+    if (log_)
+      *log_ << table << "  step to " << stepping.name << " = " << load_text(load / stepping.unit)
+            << " converged on another branch (the step released " << load_text(2.0 * released)
+            << " nN nm, full spatula): a snap within the step; cutting the increment\n";
+    stepping.failed.failed(load);
+    stepping.increment *= stepping.steps.cut;
+    if (!stepping.steps.predict_after_failure) previous_increment_ = older_increment_ = 0.0;
+    return true;
+  }
+  if (past_folds_ == PastFolds::stop) {
+    Failure failure;
+    failure.step = next_step();
+    failure.load = load / stepping.unit;
+    failure.smallest_increment = stepping.increment / stepping.unit;
+    failure.reason = "a snap within the smallest step (it released " + load_text(2.0 * released) +
+                     " nN nm, full spatula) and instabilities are set to stop";
+    return failure;
+  }
+  point.after_jump = true;   // the smallest step still crosses the snap: it is the jump
+  point.released = released;
+  point.dissipated += released;
+  if (log_)
+    *log_ << "  snap within the smallest step to " << stepping.name << " = " << load_text(load / stepping.unit)
+          << ": counted as a jump, released " << load_text(2.0 * released) << " nN nm (full spatula)\n";
+  return false;
+}
+
+void LoadPath::take_converged_step(Stepping& stepping, const Vector& trial, LoadPoint& point, int iterations,
+                                   const std::string& table, const Callback& on_point)
+{
+  const double taken = stepping.increment;
+  stepping.value += stepping.direction * stepping.increment;
+  stepping.failed.reached(stepping.value);
+  stepping.failures = 0;
+  if (stepping.refused && stepping.direction * (stepping.value - stepping.refused_load) >=
+                              -1e-12 * std::max(1.0, std::abs(stepping.refused_load)))
+    stepping.refused = false;
+  if (iterations <= stepping.steps.easy_iterations)
+    stepping.increment = std::min(stepping.increment * stepping.steps.growth, stepping.steps.maximum * stepping.unit);
+  point.step_control.increment = stepping.increment;
+  stepping.failed.save(point.step_control);
+  take_step(trial, point, taken, table, on_point);
 }
 
 const char* LoadPath::load_name(Master controlled)

@@ -246,6 +246,17 @@ private:
                                           const Callback& on_point);
   void take_step(const Vector& state, const LoadPoint& point, double increment, const std::string& table,
                  const Callback& on_point);
+  // One advance's state (load reached, next increment, failed loads), and its three outcomes of an attempt: a failed
+  // one (an early descent, a cut increment, or below the smallest the way past the fold; a failure ends the path), a
+  // converged one that crossed a snap (true: cut back and try again; at the smallest increment it is the jump), and a
+  // converged step taken (the increment grows after an easy one).
+  struct Stepping;
+  std::optional<Failure> after_failed_attempt(Stepping& stepping, double load, Vector& trial,
+                                              const std::string& newton_failure, const std::string& table,
+                                              const Callback& on_point);
+  std::variant<bool, Failure> crossed_snap(Stepping& stepping, double load, LoadPoint& point, const std::string& table);
+  void take_converged_step(Stepping& stepping, const Vector& trial, LoadPoint& point, int iterations,
+                           const std::string& table, const Callback& on_point);
   // The early descent of JumpParameters::descend_after_failures: the state it reached at `load` and its measure, if
   // it released no more than the step balance tolerance.
   std::optional<LoadPoint> descend_early(Master controlled, double load, Vector& state);
