@@ -522,6 +522,15 @@ struct LoadPath::Descent {
   double residual = 0.0;          // |f| at the last iteration [nN]
   std::ostringstream table;
 
+  // The kept factors are given up: a new cycle begins.
+  void refactor()
+  {
+    kept = 0;
+    cycle_began = now();
+  }
+  // A stiffer shift (the tangent was indefinite, or Pi did not decrease along its direction).
+  void shift_more(double growth) { eta = eta == 0.0 ? 1e-6 * scale : growth * eta; }
+
   void row(bool tables, int negative, double residual_norm, double step, double energy)
   {
     if (!tables) return;
@@ -569,53 +578,77 @@ double LoadPath::descent_line_search(const Vector& x, const Vector& direction, d
   return best_step;
 }
 
+LoadPath::DescentPoint LoadPath::descent_point(const Vector& x, Descent& d, bool fresh, Vector& f)
+{
+  auto& system = model_.system();
+  if (fresh) system.set_damping(d.eta, Teuchos::rcpFromRef(x));   // anchored at x: a pure shift, f unchanged
+  const auto evaluation = system.evaluate(x, &f, fresh);
+  if (fresh) system.set_damping(0.0, Teuchos::null);
+  DescentPoint point{evaluation.admissible, evaluation.energy(), f.norm2(), 0};
+  if (!point.admissible) return point;
+  if (d.scale == 0.0) d.scale = system.mean_diagonal();
+  if (fresh) {
+    try {
+      descent_solver().factor(*system.jacobian());
+      point.negative_pivots = descent_solver().statistics().negative_pivots;
+    } catch (const std::exception&) {
+      point.negative_pivots = 1;   // singular: treat like indefinite
+    }
+  }
+  return point;
+}
+
+void LoadPath::after_descent_step(Descent& d, bool fresh, double step, double decrease, double iteration_began)
+{
+  if (jump_.refactor == JumpParameters::Refactor::cost && fresh) {   // a new cycle: one kept iteration at least
+    d.cost.factored(now() - d.cycle_began, decrease);
+    d.kept = 1;
+  } else if (jump_.refactor == JumpParameters::Refactor::cost) {
+    // The clocks differ by rank: any rank that would refactor decides for all.
+    int keep = d.cost.keep(now() - iteration_began, decrease) ? 1 : 0;
+    Teuchos::reduceAll(*model_.system().owned_map()->getComm(), Teuchos::REDUCE_MIN, keep, Teuchos::outArg(keep));
+    if (keep) d.kept = 1;
+    else d.refactor();
+  } else if (fresh) {
+    d.kept = jump_.reused_factors;
+  } else {
+    --d.kept;
+  }
+  if (fresh) {
+    d.eta = step >= 1.0 ? 0.25 * d.eta : 2.0 * d.eta;
+    if (d.eta < 1e-9 * d.scale) d.eta = 0.0;
+  }
+  // refactor = count: a short step means the factors no longer fit the energy's curvature here
+  if (jump_.refactor == JumpParameters::Refactor::count && step < 0.5) d.kept = 0;
+}
+
 std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descent& d, double small_gradient)
 {
   auto& system = model_.system();
-  auto& mumps = descent_solver();
   auto f = system.create_vector(), direction = system.create_vector(), trial = system.create_vector();
-  const auto& comm = *system.owned_map()->getComm();
-  const auto refactor = [&] {   // the kept factors are given up: a new cycle begins
-    d.kept = 0;
-    d.cycle_began = now();
-  };
   d.cycle_began = now();   // a cycle is not charged with the confirming Newton between two calls
   for (; d.iteration < jump_.maximum_iterations; ++d.iteration) {
     const double iteration_began = now();
     // Kept factors (of a positive definite shifted tangent at an earlier state) still give a descent direction
     // -M^-1 f; the iteration then needs only f and Pi. Otherwise the tangent at x is assembled and factored.
     const bool fresh = d.kept == 0;
-    if (fresh) system.set_damping(d.eta, Teuchos::rcpFromRef(x));   // anchored at x: a pure shift, f unchanged
-    const auto evaluation = system.evaluate(x, f.get(), fresh);
-    if (fresh) system.set_damping(0.0, Teuchos::null);
-    if (!evaluation.admissible) return std::string("an element inverted during the energy descent");
-    if (d.scale == 0.0) d.scale = system.mean_diagonal();
-    const double energy = evaluation.energy();
-    const double residual = f->norm2();
-    int negative = 0;
-    if (fresh) {
-      try {
-        mumps.factor(*system.jacobian());
-        negative = mumps.statistics().negative_pivots;
-      } catch (const std::exception&) {
-        negative = 1;   // singular: treat like indefinite
-      }
-    }
-    if (negative > 0) {   // not a descent direction yet: shift more
-      d.row(tables_, negative, residual, 0.0, energy);
+    const auto point = descent_point(x, d, fresh, *f);
+    if (!point.admissible) return std::string("an element inverted during the energy descent");
+    if (point.negative_pivots > 0) {   // not a descent direction yet: shift more
+      d.row(tables_, point.negative_pivots, point.residual, 0.0, point.energy);
       ++d.indefinite;
-      d.eta = d.eta == 0.0 ? 1e-6 * d.scale : jump_.shift_growth * d.eta;
+      d.shift_more(jump_.shift_growth);
       continue;
     }
     // Near a stable minimum (positive definite tangent, small gradient): plain Newton finishes. The energy alone
     // cannot resolve the last digits (its changes fall below its rounding), the gradient can. A small gradient found
     // with a shift is tested once without it: is the unshifted tangent positive definite there? (Without this a
     // descent that has reached the minimum keeps raising the shift, since no step can lower Pi any more.)
-    d.residual = residual;
-    if (residual < small_gradient && (d.eta == 0.0 || !d.unshifted_tried || !fresh)) {
-      d.row(tables_, fresh ? negative : -1, residual, 0.0, energy);
+    d.residual = point.residual;
+    if (point.residual < small_gradient && (d.eta == 0.0 || !d.unshifted_tried || !fresh)) {
+      d.row(tables_, fresh ? point.negative_pivots : -1, point.residual, 0.0, point.energy);
       if (!fresh) {   // the tests below need the inertia at this state
-        refactor();
+        d.refactor();
         continue;
       }
       if (d.eta == 0.0) return std::nullopt;
@@ -623,15 +656,15 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
       d.eta = 0.0;
       continue;
     }
-    mumps.apply(*f, *direction);
+    descent_solver().apply(*f, *direction);
     direction->scale(-1.0);
-    double best_energy = energy;
+    double best_energy = point.energy;
     const double slope = f->dot(*direction);
-    const double best_step = descent_line_search(x, *direction, energy, slope, *trial, best_energy);
-    d.row(tables_, fresh ? negative : -1, residual, best_step, best_energy);
+    const double best_step = descent_line_search(x, *direction, point.energy, slope, *trial, best_energy);
+    d.row(tables_, fresh ? point.negative_pivots : -1, point.residual, best_step, best_energy);
     if (best_step == 0.0 && !fresh) {   // the kept factors are out of date: fresh ones at this state
       d.cost.keep(now() - iteration_began, 0.0);   // (their cycle's last, fruitless iteration)
-      refactor();
+      d.refactor();
       continue;
     }
     // A descent direction along which Pi does not measurably decrease: rounding; let Newton finish. But a direction
@@ -642,33 +675,13 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
       d.table << "  descent  (not a descent direction: slope " << slope << " nN nm; shifting the tangent)\n";
     if (best_step == 0.0) {   // no decrease along this direction: stiffen the shift
       ++d.no_decrease;
-      d.eta = d.eta == 0.0 ? 1e-6 * d.scale : jump_.shift_growth * d.eta;
+      d.shift_more(jump_.shift_growth);
       continue;
     }
     ++d.accepted;
     d.unshifted_tried = false;
     x.update(best_step, *direction, 1.0);
-    const double decrease = energy - best_energy;
-    if (jump_.refactor == JumpParameters::Refactor::cost && fresh) {   // a new cycle: one kept iteration at least
-      d.cost.factored(now() - d.cycle_began, decrease);
-      d.kept = 1;
-    } else if (jump_.refactor == JumpParameters::Refactor::cost) {
-      // The clocks differ by rank: any rank that would refactor decides for all.
-      int keep = d.cost.keep(now() - iteration_began, decrease) ? 1 : 0;
-      Teuchos::reduceAll(comm, Teuchos::REDUCE_MIN, keep, Teuchos::outArg(keep));
-      if (keep) d.kept = 1;
-      else refactor();
-    } else if (fresh) {
-      d.kept = jump_.reused_factors;
-    } else {
-      --d.kept;
-    }
-    if (fresh) {
-      d.eta = best_step >= 1.0 ? 0.25 * d.eta : 2.0 * d.eta;
-      if (d.eta < 1e-9 * d.scale) d.eta = 0.0;
-    }
-    // refactor = count: a short step means the factors no longer fit the energy's curvature here
-    if (jump_.refactor == JumpParameters::Refactor::count && best_step < 0.5) d.kept = 0;
+    after_descent_step(d, fresh, best_step, point.energy - best_energy, iteration_began);
   }
   return std::nullopt;
 }

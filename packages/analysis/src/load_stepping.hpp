@@ -265,6 +265,16 @@ private:
   struct Descent;
   std::variant<int, std::string> descend(Vector& x);
   std::optional<std::string> descend_to_small_gradient(Vector& x, Descent& descent, double small_gradient);
+  // One descent iteration's state at x: residual f, Pi, |f| and, with fresh factors (the tangent shifted by the
+  // descent's eta, factored), the negative pivots of their inertia.
+  struct DescentPoint {
+    bool admissible;
+    double energy, residual;
+    int negative_pivots;
+  };
+  DescentPoint descent_point(const Vector& x, Descent& descent, bool fresh, Vector& f);
+  // After an accepted descent step: whether the factors serve further iterations (the refactor rule), and the shift.
+  void after_descent_step(Descent& descent, bool fresh, double step, double decrease, double iteration_began);
   double descent_line_search(const Vector& x, const Vector& direction, double energy, double slope, Vector& trial,
                              double& best_energy) const;
   solvers::MumpsSolver& descent_solver();
