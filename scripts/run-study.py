@@ -562,8 +562,7 @@ def write_tables(work, scenes, level):
                 s = summaries[scene]
                 rotation_jumps = s['jumps_in_rotation']
                 if scene == 'pull-off-60' and rotation_source == 'peel-rotation':   # its rotation is the peel run's
-                    rotation_jumps = sum(1 for r in read_curve(work, 'peel-rotation')
-                                         if r['after_jump'] and r['theta_y_deg'] <= 60.0 + 1e-9)
+                    rotation_jumps = sum(1 for r in rotation_rows if r['after_jump'] and r['theta_y_deg'] <= 60.0 + 1e-9)
                 markdown.append(f'| {factor:g} | {s["P_max_nN"]:.2f} | {s["delta_u_z_nm"]:.0f} | {s["delta_Pi_ext_1e-18J"]:.0f} '
                                 f'| {s["Pi_sa_at_lift_start"]:.3f} | {rotation_jumps}, {s["jumps_in_lift"]} '
                                 f'| {s["outcome"]} |')
