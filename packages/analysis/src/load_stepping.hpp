@@ -1,6 +1,6 @@
 #pragma once
 // Quasi-static load stepping along one end-face master (the rotation alpha or the lift w): adaptive increments
-// with cut-back on failure, a secant predictor, and the work of the reactions along the path.
+// with cut-back on failure, a predictor from the last converged states, and the work of the reactions along the path.
 //
 // Each converged step is a LoadPoint; the run stops at the target, or with a Failure naming the step, the load,
 // the smallest increment tried and the Newton diagnosis (never a silently accepted state).
