@@ -736,20 +736,27 @@ def plots(results, directory):
         count, level = max(counts, key=lambda c: c[0]) if counts else (0, None)
         if count < 1 or (count < 2 and len(curves) > 1 and name != 'validation-fig8-pull-off.png'):
             continue
-        summaries = results[level][1]
+        # The finer levels' runs of the same scenes, dashed in their curve's colour (there are fewer of them).
+        finer = [other for other in finest_first[:finest_first.index(level)]
+                 if any(s in results[other][1] for s, _ in curves)]
         fig, axis = plt.subplots(figsize=(7, 4))
         for scene, label in curves:
-            if scene in summaries:
-                rows = summaries[scene]['rows']
-                axis.plot([r['u_z_nm'] for r in rows], [r['P_z_nN'] for r in rows], '.-', markersize=2, label=label)
+            colour = None
+            for drawn, style in [(level, '.-')] + [(other, '--') for other in finer]:
+                if scene in results[drawn][1]:
+                    rows = results[drawn][1][scene]['rows']
+                    line, = axis.plot([r['u_z_nm'] for r in rows], [r['P_z_nN'] for r in rows], style, markersize=2,
+                                      linewidth=1, color=colour, label=label if drawn == level else f'{label}, {drawn}')
+                    colour = line.get_color()
         axis.set_xlabel('u_z of the end face centre from the undeformed state [nm]')
         axis.set_ylabel('P_z [nN]')
-        axis.set_title(f'{title}, {level} mesh', fontsize=10)
+        level_names = f'{level} mesh' + ''.join(f', {other} mesh dashed' for other in finer)
+        axis.set_title(f'{title}, {level_names}', fontsize=10)
         axis.legend()
         axis.grid(alpha=0.3)
         fig.tight_layout()
         fig.savefig(os.path.join(directory, name), dpi=110)
-        pictures.append((name, f'{title}, {level} mesh'))
+        pictures.append((name, f'{title}, {level_names}'))
     return pictures
 
 
