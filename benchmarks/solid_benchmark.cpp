@@ -125,8 +125,8 @@ int main(int argc, char** argv)
       mesh, partition, discretization::spatula_constraints(mesh, {p1.x, p1.y, p1.z}, true), {}, comm));
   solvers::LinearSolverParameters linear_parameters;
   const auto type = parameters::choice_named<solvers::LinearSolverType>(solver_type, solvers::linear_solver_names());
-  if (!type) {
-    std::cerr << "solid_benchmark: unknown linear solver '" << solver_type << "'\n";
+  if (!type || *type == solvers::LinearSolverType::automatic) {
+    std::cerr << "solid_benchmark: unknown linear solver '" << solver_type << "' (name one: auto is the app's)\n";
     return 2;
   }
   linear_parameters.type = *type;
@@ -155,7 +155,8 @@ int main(int argc, char** argv)
     variant += (variant.empty() ? "" : " ") + option;
   }
   if (factor_only) return factor_benchmark(*system, linear_parameters.mumps, level, repetitions, variant);
-  solvers::LinearSolverFactory linear(linear_parameters);
+  solvers::LinearSolverFactory linear(linear_parameters,
+                                      std::make_shared<const discretization::NodeBlocks>(system->node_blocks()));
   auto model = Teuchos::rcp(new solvers::SpatulaModel(system, linear.lows_factory()));
   solvers::NewtonSolver newton(model, solvers::NewtonParameters{}, linear);
   const double bandwidth = triad_bandwidth();
@@ -214,6 +215,11 @@ int main(int argc, char** argv)
               << statistics.factorizations << "," << statistics.last_factorization_seconds << ","
               << statistics.factorization_flops / 1e9 << "," << statistics.factor_entries / 1e6 << ","
               << statistics.factorization_megabytes << "\n";
+    const auto& amg = linear.amg_statistics();
+    if (amg.setups > 0)
+      std::cerr << "solid_benchmark: AMG " << amg.setups << " hierarchies, " << amg.reuses << " reused, "
+                << amg.applications << " applications" << (amg.fell_back ? ", then MUMPS after a stalled solve" : "")
+                << "\n";
   }
   return 0;
 }

@@ -110,6 +110,7 @@ Checked check_everything(const Options& options, const Teuchos::Comm<int>& comm)
   app::agree(comm, [&] {
     Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: mesh"));
     run.mesh = app::make_mesh_within_memory(*run.scene, *run.shape, run.memory);
+    run.scene->linear_solver.type = run.memory.solver;   // 'auto' resolved from the memory estimate
     run.partition = mesh::partition_mesh(run.mesh, comm.getSize());
     app::check_ranks(run.mesh, run.partition);
   });
@@ -131,6 +132,11 @@ void print_summary(std::ostream& out, const Checked& run, const spatula::mesh::M
   for (int r = 0; r < run.partition.ranks; ++r) out << " " << run.partition.elements_of(r).size();
   out << "\n  memory estimate                     " << run.memory.bytes / 1e9 << " GB of "
       << run.memory.available_bytes / 1e9 << " GB available\n";
+  out << "  linear solver                       "
+      << spatula::parameters::name_of(run.memory.solver, spatula::solvers::linear_solver_names())
+      << (run.scene->validated.sublist("Linear Solver").get<std::string>("type") == "auto"
+              ? " (chosen by 'Linear Solver/type' = auto: MUMPS while its factors fit in memory)" : "")
+      << "\n";
 }
 
 // What a stopped run leaves beside its partial results: why it stopped and how to go on.

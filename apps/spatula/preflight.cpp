@@ -40,20 +40,42 @@ double available_memory()
 // Peak memory for n unknowns. Matrix: ~81 entries per row (27 neighbouring nodes x 3), held by Tpetra (values and
 // indices, owned and overlapping rows) and copied once by the solver: about 2.5 x 12 bytes per entry. Direct solver
 // (MUMPS LDL^T): the fine mesh's measured 3.5 GB at 318,087 unknowns, grown as n^(4/3). ILU(k): k + 2 matrices.
+// Algebraic multigrid: the fine mesh's measured 2.2 GB (both ranks' peak resident memory in the solid benchmark,
+// against 3.8 GB with MUMPS there), grown as n.
 struct MemoryModel {
   static constexpr double entries_per_unknown = 81.0, bytes_per_entry = 30.0;
-  static constexpr double measured_unknowns = 318087.0, measured_bytes = 3.5e9;
+  static constexpr double measured_unknowns = 318087.0, measured_bytes = 3.5e9, measured_multigrid_bytes = 2.2e9;
   static double direct(double unknowns) { return measured_bytes * std::pow(unknowns / measured_unknowns, 4.0 / 3.0); }
+  static double multigrid(double unknowns) { return measured_multigrid_bytes * unknowns / measured_unknowns; }
   static double iterative(double unknowns, int fill)
   {
     return (fill + 2) * entries_per_unknown * bytes_per_entry * unknowns;
   }
 };
 
-double peak_bytes(const Scene& scene, double unknowns)
+constexpr double usable_memory = 0.9;   // of MemAvailable
+
+double solver_bytes(solvers::LinearSolverType type, const Scene& scene, double unknowns)
 {
-  return scene.linear_solver.type == solvers::LinearSolverType::mumps ? MemoryModel::direct(unknowns)
-                                             : MemoryModel::iterative(unknowns, scene.linear_solver.fill_level);
+  switch (type) {
+    case solvers::LinearSolverType::gmres_ilu: return MemoryModel::iterative(unknowns, scene.linear_solver.fill_level);
+    case solvers::LinearSolverType::gmres_amg: return MemoryModel::multigrid(unknowns);
+    default: return MemoryModel::direct(unknowns);
+  }
+}
+
+// The solver 'auto' picks: MUMPS while its factors fit in memory (it was the faster at every size measured here:
+// docs/solvers.md), else the algebraic multigrid.
+solvers::LinearSolverType chosen_solver(const Scene& scene, double unknowns, double available_bytes)
+{
+  if (scene.linear_solver.type != solvers::LinearSolverType::automatic) return scene.linear_solver.type;
+  const bool direct_fits = available_bytes <= 0.0 || MemoryModel::direct(unknowns) <= usable_memory * available_bytes;
+  return direct_fits ? solvers::LinearSolverType::mumps : solvers::LinearSolverType::gmres_amg;
+}
+
+double peak_bytes(const Scene& scene, double unknowns, double available_bytes)
+{
+  return solver_bytes(chosen_solver(scene, unknowns, available_bytes), scene, unknowns);
 }
 
 // A geometry parameter as a message names it.
@@ -192,32 +214,34 @@ MemoryEstimate estimate_memory(const Scene& scene, std::int64_t unrefined_nodes,
   estimate.nodes = static_cast<std::int64_t>(estimate.nodes_at(scene.mesh.refinement_factor));
   estimate.unknowns = 3 * estimate.nodes;
   estimate.matrix_entries = static_cast<std::int64_t>(MemoryModel::entries_per_unknown * estimate.unknowns);
-  estimate.bytes = peak_bytes(scene, double(estimate.unknowns));
   estimate.available_bytes = available_memory();
+  estimate.solver = chosen_solver(scene, double(estimate.unknowns), estimate.available_bytes);
+  estimate.bytes = peak_bytes(scene, double(estimate.unknowns), estimate.available_bytes);
   return estimate;
 }
 
 void check_memory(const Scene& scene, const MemoryEstimate& estimate)
 {
-  constexpr double usable = 0.9;   // of MemAvailable
+  constexpr double usable = usable_memory;
   if (estimate.available_bytes <= 0.0 || estimate.bytes <= usable * estimate.available_bytes) return;
   const auto& m = scene.mesh;
   std::ostringstream message;
   message << "the mesh ('Mesh/level' = '" << m.level << "', 'Mesh/refinement factor' = " << m.refinement_factor
           << ", 'Mesh/layers' = " << m.layers << ") has about " << estimate.unknowns << " unknowns and needs about "
           << gigabytes(estimate.bytes) << " with 'Linear Solver/type' = '"
-          << parameters::name_of(scene.linear_solver.type, solvers::linear_solver_names()) << "'; "
+          << parameters::name_of(estimate.solver, solvers::linear_solver_names()) << "'; "
           << gigabytes(estimate.available_bytes) << " available. ";
   int fits = 0;
   for (int r = 1; r < m.refinement_factor; ++r)
-    if (peak_bytes(scene, 3.0 * estimate.nodes_at(r)) <= usable * estimate.available_bytes) fits = r;
+    if (peak_bytes(scene, 3.0 * estimate.nodes_at(r), estimate.available_bytes) <= usable * estimate.available_bytes)
+      fits = r;
   if (fits > 0) message << "Allowed here: 'Mesh/refinement factor' <= " << fits << "";
   else if (!m.choice.empty()) message << "Raise 'Mesh/target error' (with 'Mesh/level' = auto) for a coarser mesh";
   else message << "Use a coarser 'Mesh/level' or fewer 'Mesh/layers'";
-  if (scene.linear_solver.type == solvers::LinearSolverType::mumps) {
-    const double iterative = MemoryModel::iterative(double(estimate.unknowns), scene.linear_solver.fill_level);
-    message << ", or the iterative solver 'Linear Solver/type' = 'gmres-ilu' (about " << gigabytes(iterative)
-            << (iterative <= usable * estimate.available_bytes ? ", fits" : ", does not fit either") << ")";
+  if (estimate.solver == solvers::LinearSolverType::mumps) {
+    const double multigrid = MemoryModel::multigrid(double(estimate.unknowns));
+    message << ", or the iterative solver 'Linear Solver/type' = 'gmres-amg' (about " << gigabytes(multigrid)
+            << (multigrid <= usable * estimate.available_bytes ? ", fits" : ", does not fit either") << ")";
   }
   throw parameters::InputError(message.str());
 }

@@ -29,6 +29,7 @@ struct MemoryEstimate {
   std::int64_t nodes = 0, unknowns = 0, matrix_entries = 0;
   double bytes = 0.0;             // peak of the whole run, all ranks together
   double available_bytes = 0.0;   // MemAvailable of this machine (all ranks are taken to share it)
+  solvers::LinearSolverType solver = solvers::LinearSolverType::mumps;   // the scene's, or what 'auto' chose
   double fixed_nodes = 0.0, refined_nodes = 0.0;   // nodes at refinement factor r: fixed + refined r^2
   double nodes_at(int r) const { return fixed_nodes + refined_nodes * r * r; }
 };

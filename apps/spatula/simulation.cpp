@@ -178,7 +178,10 @@ Run::Run(const Scene& scene, const geometry::SpatulaShape& shape, const mesh::He
          const io::OutputDirectory* directory, io::XdmfOutput* fields, std::ostream& out)
     : scene_(scene), mesh_(mesh), comm_(comm), root_(comm->getRank() == 0), directory_(directory), fields_(fields),
       out_(out), options_(system_options(scene)), system_(make_system(scene, shape, mesh, partition, comm, options_)),
-      linear_(scene.linear_solver), model_(Teuchos::rcp(new solvers::SpatulaModel(system_, linear_.lows_factory()))),
+      linear_(scene.linear_solver, scene.linear_solver.type == solvers::LinearSolverType::gmres_amg
+                                       ? std::make_shared<const discretization::NodeBlocks>(system_->node_blocks())
+                                       : nullptr),
+      model_(Teuchos::rcp(new solvers::SpatulaModel(system_, linear_.lows_factory()))),
       newton_(model_, scene.newton, linear_),
       path_(*model_, newton_, root_ ? &out : nullptr, scene.output.convergence_tables), theta_s_(shape.theta_s()),
       young_(scene.material.young), initial_contact_(path_.last().contact_energy)
@@ -411,6 +414,10 @@ std::optional<Stop> Run::finish(std::optional<analysis::Failure> failure, int in
       out_ << "; MUMPS: " << statistics.analyses << " analyses, " << statistics.factorizations << " factorizations ("
            << statistics.reused << " tangents served by an earlier one, " << statistics.factorization_seconds
            << " s), " << statistics.solves << " solves";
+    const auto& amg = linear_.amg_statistics();
+    if (amg.setups > 0)
+      out_ << "; AMG: " << amg.setups << " hierarchies, " << amg.reuses << " reused, " << amg.applications
+           << " applications" << (amg.fell_back ? ", then MUMPS after a stalled solve" : "");
     if (const auto* descents = path_.descent_statistics())
       out_ << "; jumps' energy descents: " << descents->analyses << " analyses, " << descents->factorizations
            << " factorizations (" << descents->factorization_seconds << " s), " << descents->solves << " solves";

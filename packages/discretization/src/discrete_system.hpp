@@ -53,6 +53,18 @@ struct SystemOptions {
   std::shared_ptr<const ContactModel> contact;
 };
 
+// The displacement unknowns padded to three rows per node, the form smoothed aggregation works on: every node with
+// an unknown gets a block of three rows (a fixed component a row of its own, with no unknown behind it), and the
+// three masters one more block. Each block lives on the rank owning the node's unknowns.
+struct NodeBlocks {
+  Teuchos::RCP<const Map> map;                     // the padded rows this rank owns
+  std::vector<GlobalOrdinal> row_of_unknown;       // per global unknown, its padded row (complete on every rank)
+  GlobalOrdinal master_block = 0;                  // the first padded row of the masters' block
+  // On `map`: the six rigid-body motions (translations along X, Y, Z, rotations about X, Y, Z through the
+  // centroid of the node space) at the nodes' rows, zero in the masters' block: the near-null space of elasticity.
+  Teuchos::RCP<MultiVector> rigid_body_modes;
+};
+
 class DiscreteSystem {
 public:
   DiscreteSystem(const mesh::HexMesh& mesh, const mesh::Partition& partition, const Constraints& constraints,
@@ -95,6 +107,9 @@ public:
   // Writes nodal displacements u (N x 3, row-major, all mesh nodes) into the free unknowns of x that this rank
   // owns (fixed and rigid components are not unknowns and are ignored).
   void set_displacements(Vector& x, const std::vector<double>& u) const;
+
+  // The unknowns in 3 x 3 node blocks, for smoothed aggregation (see NodeBlocks). Collective.
+  NodeBlocks node_blocks() const;
 
   // Nodal displacements (N x 3, row-major, every node of the mesh including fixed and rigid ones) and the
   // element field tr(sigma) [GPa], both complete on every rank (for output and diagnostics).

@@ -1,15 +1,12 @@
 #include "solvers/linear_solver.hpp"
 
 #include "parameters/parameter_validation.hpp"
+#include "solvers/inverse_preconditioner_factory.hpp"
 
 #include <Stratimikos_DefaultLinearSolverBuilder.hpp>
 #include <Teuchos_AbstractFactoryStd.hpp>
 #include <Teuchos_CommHelpers.hpp>
-#include <Thyra_DefaultPreconditioner.hpp>
 #include <Thyra_Ifpack2PreconditionerFactory.hpp>
-#include <Thyra_PreconditionerFactoryBase.hpp>
-#include <Thyra_TpetraLinearOp.hpp>
-#include <Thyra_TpetraThyraWrappers.hpp>
 
 #include <algorithm>
 
@@ -21,7 +18,7 @@ using discretization::Node;
 
 const std::vector<std::string>& linear_solver_names()
 {
-  static const std::vector<std::string> names = {"mumps", "gmres-ilu"};
+  static const std::vector<std::string> names = {"mumps", "gmres-ilu", "gmres-amg", "auto"};
   return names;
 }
 
@@ -51,10 +48,12 @@ void LinearSolverParameters::declare(Teuchos::ParameterList& list)
   const LinearSolverParameters d;   // the defaults
   using parameters::Range;
   parameters::declare_string(list, "type", parameters::name_of(d.type, linear_solver_names()),
-                             "linear solver of the Newton steps", linear_solver_names());
+                             "linear solver of the Newton steps (auto: mumps while its factors fit in the memory "
+                             "available, else gmres-amg)", linear_solver_names());
   parameters::declare_double(list, "tolerance", d.tolerance, "relative residual of each linear solve",
                              {0.0, 0.1, true, false});
-  parameters::declare_int(list, "maximum iterations", d.maximum_iterations, "Krylov iterations per solve (gmres-ilu)",
+  parameters::declare_int(list, "maximum iterations", d.maximum_iterations, "Krylov iterations per solve (gmres-ilu, gmres-amg: "
+                          "a gmres-amg solve that reaches it hands every later tangent to MUMPS)",
                           Range::closed(1, 100000));
   parameters::declare_int(list, "ILU fill level", d.fill_level,
                           "level of fill of ILU(k) (gmres-ilu)", Range::closed(0, 8));
@@ -90,8 +89,6 @@ LinearSolverParameters LinearSolverParameters::from(const Teuchos::ParameterList
 
 namespace {
 
-using ThyraOperator = Thyra::TpetraLinearOp<double, LocalOrdinal, GlobalOrdinal, Node>;
-
 // GMRES iterations per solve around MUMPS: an exact inverse needs one (a few more refine); old or low-rank factors more.
 int gmres_limit(const LinearSolverParameters& p)
 {
@@ -100,21 +97,11 @@ int gmres_limit(const LinearSolverParameters& p)
 }
 
 // MUMPS as a Thyra preconditioner: A^-1 itself. Keeps one MumpsSolver (and its symbolic analysis) per map.
-class MumpsPreconditionerFactory : public Thyra::PreconditionerFactoryBase<double> {
+class MumpsPreconditionerFactory : public InversePreconditionerFactory {
 public:
   MumpsPreconditionerFactory(LinearSolverParameters parameters, std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver)
-      : parameters_(std::move(parameters)), solver_(std::move(solver))
+      : InversePreconditionerFactory("MUMPS"), parameters_(std::move(parameters)), solver_(std::move(solver))
   {
-  }
-
-  bool isCompatible(const Thyra::LinearOpSourceBase<double>& source) const override
-  {
-    return !matrix_of(source).is_null();
-  }
-
-  Teuchos::RCP<Thyra::PreconditionerBase<double>> createPrec() const override
-  {
-    return Teuchos::rcp(new Thyra::DefaultPreconditioner<double>);
   }
 
   void initializePrec(const Teuchos::RCP<const Thyra::LinearOpSourceBase<double>>& source,
@@ -136,33 +123,7 @@ public:
     }
     applications_at_init_ = solver->statistics().applications_since_factor;
     solve_seconds_at_init_ = solver->statistics().solve_seconds;
-    auto& target = dynamic_cast<Thyra::DefaultPreconditioner<double>&>(*preconditioner);
-    const auto space = Thyra::tpetraVectorSpace<double>(matrix->getRowMap());
-    const Teuchos::RCP<const Thyra::LinearOpBase<double>> inverse =
-        Thyra::tpetraLinearOp<double, LocalOrdinal, GlobalOrdinal, Node>(space, space, solver);
-    target.initializeUnspecified(inverse);
-  }
-
-  void uninitializePrec(Thyra::PreconditionerBase<double>* preconditioner,
-                        Teuchos::RCP<const Thyra::LinearOpSourceBase<double>>* source,
-                        Thyra::ESupportSolveUse* use) const override
-  {
-    if (source) *source = Teuchos::null;
-    if (use) *use = Thyra::SUPPORT_SOLVE_UNSPECIFIED;
-    dynamic_cast<Thyra::DefaultPreconditioner<double>&>(*preconditioner).uninitialize();
-  }
-
-  void setParameterList(const Teuchos::RCP<Teuchos::ParameterList>& list) override { list_ = list; }
-  Teuchos::RCP<Teuchos::ParameterList> getNonconstParameterList() override { return list_; }
-  Teuchos::RCP<Teuchos::ParameterList> unsetParameterList() override
-  {
-    auto old = list_;
-    list_ = Teuchos::null;
-    return old;
-  }
-  Teuchos::RCP<const Teuchos::ParameterList> getValidParameters() const override
-  {
-    return Teuchos::rcp(new Teuchos::ParameterList("MUMPS"));
+    hold(*preconditioner, matrix->getRowMap(), solver);
   }
 
 private:
@@ -185,19 +146,30 @@ private:
     return refactor == 0;
   }
 
-  static Teuchos::RCP<const discretization::CrsMatrix> matrix_of(const Thyra::LinearOpSourceBase<double>& source)
-  {
-    const auto op = Teuchos::rcp_dynamic_cast<const ThyraOperator>(source.getOp());
-    if (op.is_null()) return Teuchos::null;
-    return Teuchos::rcp_dynamic_cast<const discretization::CrsMatrix>(op->getConstTpetraOperator());
-  }
-
   LinearSolverParameters parameters_;
   std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver_;
-  Teuchos::RCP<Teuchos::ParameterList> list_;
   mutable int served_ = 0, applications_at_init_ = 0;   // tangents the factors served after their own
   mutable double solve_seconds_at_init_ = 0.0;          // MUMPS solve time when the last tangent came
   mutable RefactorCost cost_;
+};
+
+// gmres-amg's preconditioner factories: each over the one hierarchy, with MUMPS as the fallback.
+class AmgFactoryCreator : public Teuchos::AbstractFactory<Thyra::PreconditionerFactoryBase<double>> {
+public:
+  AmgFactoryCreator(LinearSolverParameters parameters, std::shared_ptr<const AlgebraicMultigrid> multigrid,
+                    std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver)
+      : parameters_(std::move(parameters)), multigrid_(std::move(multigrid)), solver_(std::move(solver))
+  {
+  }
+  Teuchos::RCP<Thyra::PreconditionerFactoryBase<double>> create() const override
+  {
+    return multigrid_->preconditioner_factory(Teuchos::rcp(new MumpsPreconditionerFactory(parameters_, solver_)));
+  }
+
+private:
+  LinearSolverParameters parameters_;
+  std::shared_ptr<const AlgebraicMultigrid> multigrid_;
+  std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver_;
 };
 
 class MumpsFactoryCreator : public Teuchos::AbstractFactory<Thyra::PreconditionerFactoryBase<double>> {
@@ -228,6 +200,10 @@ Teuchos::RCP<Teuchos::ParameterList> stratimikos_list(const LinearSolverParamete
     gmres.set("Maximum Iterations", gmres_limit(p));
     gmres.set("Num Blocks", gmres_limit(p));
     list->set("Preconditioner Type", "MUMPS");
+  } else if (p.type == LinearSolverType::gmres_amg) {
+    gmres.set("Maximum Iterations", p.maximum_iterations);
+    gmres.set("Num Blocks", std::min(p.maximum_iterations, 200));
+    list->set("Preconditioner Type", "AMG");
   } else {
     gmres.set("Maximum Iterations", p.maximum_iterations);
     gmres.set("Num Blocks", std::min(p.maximum_iterations, 200));
@@ -244,19 +220,28 @@ Teuchos::RCP<Teuchos::ParameterList> stratimikos_list(const LinearSolverParamete
 struct LinearSolverFactory::Implementation {
   LinearSolverParameters parameters;
   std::shared_ptr<Teuchos::RCP<MumpsSolver>> mumps = std::make_shared<Teuchos::RCP<MumpsSolver>>();
+  std::shared_ptr<const AlgebraicMultigrid> multigrid;   // gmres-amg only
   Teuchos::RCP<const Thyra::LinearOpWithSolveFactoryBase<double>> factory;
   MumpsStatistics empty;
 };
 
-LinearSolverFactory::LinearSolverFactory(const LinearSolverParameters& parameters)
+LinearSolverFactory::LinearSolverFactory(const LinearSolverParameters& parameters,
+                                         std::shared_ptr<const discretization::NodeBlocks> node_blocks)
     : implementation_(std::make_unique<Implementation>())
 {
   auto& impl = *implementation_;
   impl.parameters = parameters;
+  if (parameters.type == LinearSolverType::automatic)
+    throw std::logic_error("LinearSolverFactory: 'auto' must be resolved to a solver first");
+  if (parameters.type == LinearSolverType::gmres_amg)
+    impl.multigrid = std::make_shared<const AlgebraicMultigrid>(std::move(node_blocks), parameters.maximum_iterations);
   Stratimikos::DefaultLinearSolverBuilder builder;
   builder.setPreconditioningStrategyFactory(
       Teuchos::rcp(new MumpsFactoryCreator(parameters, impl.mumps)),
       "MUMPS");
+  if (impl.multigrid)
+    builder.setPreconditioningStrategyFactory(
+        Teuchos::rcp(new AmgFactoryCreator(parameters, impl.multigrid, impl.mumps)), "AMG");
   using Ifpack2Factory = Thyra::Ifpack2PreconditionerFactory<discretization::CrsMatrix>;
   builder.setPreconditioningStrategyFactory(
       Teuchos::abstractFactoryStd<Thyra::PreconditionerFactoryBase<double>, Ifpack2Factory>(), "Ifpack2");
@@ -275,6 +260,12 @@ const MumpsStatistics& LinearSolverFactory::mumps_statistics() const
 {
   const auto& solver = *implementation_->mumps;
   return solver.is_null() ? implementation_->empty : solver->statistics();
+}
+
+const AmgStatistics& LinearSolverFactory::amg_statistics() const
+{
+  static const AmgStatistics none;
+  return implementation_->multigrid ? implementation_->multigrid->statistics() : none;
 }
 
 const LinearSolverParameters& LinearSolverFactory::parameters() const { return implementation_->parameters; }

@@ -12,9 +12,13 @@
 //              factorization's cycle (its factorization time plus all the solve time it served, over its tangents);
 //              that keeps the long-run cost per tangent near its minimum whatever the mesh size.
 //   gmres-ilu  Belos GMRES with Ifpack2 ILU(k) of each rank's rows (block Jacobi across ranks).
+//   gmres-amg  Belos GMRES with MueLu smoothed aggregation (algebraic_multigrid.hpp), its hierarchy reused across
+//              tangents; after a solve that reached `maximum iterations`, MUMPS serves every later tangent.
+//   auto       mumps where its factors fit in the memory available, else gmres-amg (chosen by the app).
 //
 // The MUMPS factorization object lives as long as the factory, so its symbolic analysis is reused by every
 // Newton iteration and load step.
+#include "solvers/algebraic_multigrid.hpp"
 #include "solvers/mumps_solver.hpp"
 
 #include <Teuchos_ParameterList.hpp>
@@ -26,7 +30,8 @@
 namespace spatula::solvers {
 
 // The linear solver of the Newton steps, in the order of linear_solver_names().
-enum class LinearSolverType { mumps, gmres_ilu };
+// `automatic` is resolved before a factory is made (the app picks from the memory the mesh needs).
+enum class LinearSolverType { mumps, gmres_ilu, gmres_amg, automatic };
 
 // When a kept MUMPS factorization is replaced by a new one.
 enum class RefactorRule { lag, cost };
@@ -52,7 +57,7 @@ private:
 struct LinearSolverParameters {
   LinearSolverType type = LinearSolverType::mumps;
   double tolerance = 1e-10;     // relative residual of each linear solve
-  int maximum_iterations = 500; // Krylov iterations (gmres-ilu)
+  int maximum_iterations = 500; // Krylov iterations (gmres-ilu, gmres-amg)
   int fill_level = 1;           // ILU(k) level of fill (gmres-ilu)
   MumpsParameters mumps;
   // With refactor = lag: tangents a MUMPS factorization may serve as preconditioner (0: refactor always). 4: measured
@@ -69,12 +74,16 @@ const std::vector<std::string>& linear_solver_names();
 
 class LinearSolverFactory {
 public:
-  explicit LinearSolverFactory(const LinearSolverParameters& parameters);
+  // node_blocks: the unknowns in node blocks (DiscreteSystem::node_blocks); gmres-amg needs them.
+  explicit LinearSolverFactory(const LinearSolverParameters& parameters,
+                               std::shared_ptr<const discretization::NodeBlocks> node_blocks = nullptr);
   ~LinearSolverFactory();
 
   Teuchos::RCP<const Thyra::LinearOpWithSolveFactoryBase<double>> lows_factory() const;
-  // Statistics of the MUMPS factorizations (all zero for iterative solvers).
+  // Statistics of the MUMPS factorizations (all zero for iterative solvers until gmres-amg falls back to MUMPS).
   const MumpsStatistics& mumps_statistics() const;
+  // gmres-amg: hierarchies built, reused, preconditioner applications, and whether MUMPS has taken over.
+  const AmgStatistics& amg_statistics() const;
   const LinearSolverParameters& parameters() const;
 
 private:

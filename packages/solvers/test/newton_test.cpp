@@ -6,6 +6,7 @@
 #include "mesh/spatula_mesher.hpp"
 
 #include <Teuchos_DefaultComm.hpp>
+#include <cmath>
 #include <gtest/gtest.h>
 
 namespace {
@@ -16,6 +17,8 @@ struct Equilibrium {
   Teuchos::RCP<discretization::Vector> x;
   solvers::NewtonResult result;
   double moment = 0.0, lift_force = 0.0;
+  solvers::AmgStatistics amg;
+  int factorizations = 0;
 };
 
 Equilibrium rotate(const solvers::LinearSolverParameters& linear_parameters, solvers::NewtonParameters newton_parameters)
@@ -27,7 +30,8 @@ Equilibrium rotate(const solvers::LinearSolverParameters& linear_parameters, sol
   const auto p1 = shape.point(1);
   auto system = Teuchos::rcp(new discretization::DiscreteSystem(
       mesh, partition, discretization::spatula_constraints(mesh, {p1.x, p1.y, p1.z}, true), {}, comm));
-  solvers::LinearSolverFactory linear(linear_parameters);
+  solvers::LinearSolverFactory linear(linear_parameters,
+                                      std::make_shared<const discretization::NodeBlocks>(system->node_blocks()));
   auto model = Teuchos::rcp(new solvers::SpatulaModel(system, linear.lows_factory()));
   newton_parameters.relative_tolerance = 1e-12;
   newton_parameters.update_tolerance = 1e-10;
@@ -40,6 +44,8 @@ Equilibrium rotate(const solvers::LinearSolverParameters& linear_parameters, sol
   const auto evaluation = system->evaluate(*equilibrium.x, nullptr, false);
   equilibrium.moment = evaluation.master_residual[0];
   equilibrium.lift_force = evaluation.master_residual[1];
+  equilibrium.amg = linear.amg_statistics();
+  equilibrium.factorizations = linear.mumps_statistics().factorizations;
   return equilibrium;
 }
 
@@ -80,6 +86,48 @@ TEST(Newton, EveryLinearSolverAndForcingTermReachesTheSameEquilibrium)
   const auto iterative = rotate(ilu, solvers::NewtonParameters{});
   ASSERT_TRUE(iterative.result.converged) << iterative.result.failure;
   EXPECT_LT(relative_difference(*reference.x, *iterative.x), 1e-8);
+}
+
+// Algebraic multigrid (MueLu smoothed aggregation with the rigid-body modes) inside GMRES gives Newton the same
+// directions as MUMPS when both solve each system to 1e-12: the same residual after every iteration, the same
+// equilibrium. And where its GMRES stalls, MUMPS takes over and Newton still reaches that equilibrium.
+TEST(Newton, AlgebraicMultigridGivesTheIteratesOfTheDirectSolver)
+{
+  solvers::LinearSolverParameters direct;
+  direct.refactor = solvers::RefactorRule::lag;
+  direct.lag = 0;
+  direct.tolerance = 1e-12;
+  solvers::NewtonParameters exact;
+  exact.inexact = false;
+  const auto reference = rotate(direct, exact);
+  ASSERT_TRUE(reference.result.converged) << reference.result.failure;
+
+  solvers::LinearSolverParameters amg;
+  amg.type = solvers::LinearSolverType::gmres_amg;
+  amg.tolerance = 1e-12;
+  const auto multigrid = rotate(amg, exact);
+  ASSERT_TRUE(multigrid.result.converged) << multigrid.result.failure;
+  EXPECT_EQ(multigrid.amg.setups, 1);   // one hierarchy, reused by the later tangents
+  EXPECT_EQ(multigrid.amg.reuses + 1, static_cast<int>(multigrid.result.iterations.size()));
+  EXPECT_FALSE(multigrid.amg.fell_back);
+  EXPECT_EQ(multigrid.factorizations, 0);
+  ASSERT_EQ(multigrid.result.iterations.size(), reference.result.iterations.size());
+  const double f0 = reference.result.initial_residual_norm;
+  for (std::size_t k = 0; k < reference.result.iterations.size(); ++k) {
+    const double a = reference.result.iterations[k].residual_norm, b = multigrid.result.iterations[k].residual_norm;
+    EXPECT_LT(std::abs(a - b), 1e-8 * f0) << "iteration " << k + 1 << ": |f| " << a << " against " << b;
+  }
+  EXPECT_LT(relative_difference(*reference.x, *multigrid.x), 1e-8);
+
+  amg.maximum_iterations = 2;   // too few for any solve: the first stalls, MUMPS serves the rest
+  amg.refactor = solvers::RefactorRule::lag;   // with fresh factors (one GMRES iteration each)
+  amg.lag = 0;
+  const auto rescued = rotate(amg, solvers::NewtonParameters{});
+  ASSERT_TRUE(rescued.result.converged) << rescued.result.failure;
+  EXPECT_TRUE(rescued.amg.fell_back);
+  EXPECT_EQ(rescued.amg.setups, 1);
+  EXPECT_GE(rescued.factorizations, 1);
+  EXPECT_LT(relative_difference(*reference.x, *rescued.x), 1e-8);
 }
 
 // One source for every default: the valid parameter list declares the typed structs' own defaults, so a list with
