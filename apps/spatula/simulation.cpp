@@ -420,7 +420,8 @@ std::optional<Stop> Run::finish(std::optional<analysis::Failure> failure, int in
            << " applications" << (amg.fell_back ? ", then MUMPS after a stalled solve" : "");
     if (const auto* descents = path_.descent_statistics())
       out_ << "; jumps' energy descents: " << descents->analyses << " analyses, " << descents->factorizations
-           << " factorizations (" << descents->factorization_seconds << " s), " << descents->solves << " solves";
+           << " factorizations (" << descents->factorization_seconds << " s), " << descents->solves << " solves ("
+           << descents->reused << " with kept factors)";
     out_ << "\n";
   }
   if (!failure && !interrupted_by) return std::nullopt;

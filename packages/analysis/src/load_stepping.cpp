@@ -657,6 +657,7 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
       continue;
     }
     descent_solver().apply(*f, *direction);
+    if (!fresh) descent_solver().count_reuse();   // an iteration served by kept factors
     direction->scale(-1.0);
     double best_energy = point.energy;
     const double slope = f->dot(*direction);
