@@ -125,11 +125,19 @@ void AlgebraicMultigrid::State::build_pattern(const CrsMatrix& tangent)
   }
   Kokkos::deep_copy(target_of_entry, target_host);
   // Padding rows: a unit diagonal (Chebyshev and the prolongator smoothing scale by the diagonal, so 1 is as good
-  // as any value); rows with an unknown get theirs from the tangent.
+  // as any value), set where the values live (the device); rows with an unknown get theirs from the tangent.
   std::vector<char> has_unknown(padded_rows, 0);
   for (LocalOrdinal row = 0; row < row_count; ++row) has_unknown[padded_row_host(row)] = 1;
+  std::vector<std::int64_t> padding;
   for (std::size_t p = 0; p < padded_rows; ++p)
-    if (!has_unknown[p]) padded_local.values(place(p, blocks->map->getGlobalElement(p))) = 1.0;
+    if (!has_unknown[p]) padding.push_back(place(p, blocks->map->getGlobalElement(p)));
+  Kokkos::View<std::int64_t*, execution_space> padding_entries("padding diagonal entries", padding.size());
+  Kokkos::deep_copy(padding_entries,
+                    Kokkos::View<const std::int64_t*, Kokkos::HostSpace>(padding.data(), padding.size()));
+  const auto values = padded->getLocalMatrixDevice().values;
+  Kokkos::parallel_for("spatula: AMG padding diagonal",
+                       Kokkos::RangePolicy<execution_space>(0, padding_entries.extent(0)),
+                       KOKKOS_LAMBDA(const std::size_t k) { values(padding_entries(k)) = 1.0; });
 }
 
 void AlgebraicMultigrid::State::copy_values(const CrsMatrix& tangent) const
