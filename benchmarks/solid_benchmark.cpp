@@ -107,7 +107,7 @@ int main(int argc, char** argv)
   Tpetra::ScopeGuard kokkos_scope(&argc, &argv);   // Kokkos starts here, not lazily at the first Tpetra::Map
   auto comm = Teuchos::DefaultComm<int>::getComm();
   if (argc < 3) {
-    std::cerr << "usage: solid_benchmark <coarse|medium|fine> <mumps|gmres-ilu> [repetitions] [ordering=NAME] "
+    std::cerr << "usage: solid_benchmark <coarse|medium|fine> <mumps|gmres-ilu|gmres-amg> [repetitions] [ordering=NAME] "
                  "[low-rank=TOLERANCE] [lag=N]\n";
     return 2;
   }

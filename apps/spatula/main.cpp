@@ -18,6 +18,7 @@
 #include "parameters/parameter_validation.hpp"
 #include "mesh/partition.hpp"
 
+#include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_DefaultComm.hpp>
 #include <Teuchos_GlobalMPISession.hpp>
 #include <Tpetra_Core.hpp>
@@ -110,10 +111,15 @@ Checked check_everything(const Options& options, const Teuchos::Comm<int>& comm)
   app::agree(comm, [&] {
     Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: mesh"));
     run.mesh = app::make_mesh_within_memory(*run.scene, *run.shape, run.memory);
-    run.scene->linear_solver.type = run.memory.solver;   // 'auto' resolved from the memory estimate
     run.partition = mesh::partition_mesh(run.mesh, comm.getSize());
     app::check_ranks(run.mesh, run.partition);
   });
+  // 'auto' resolved from the memory estimate: rank 0's (each rank reads its own MemAvailable), so that every rank
+  // builds the same solver.
+  int solver = static_cast<int>(run.memory.solver);
+  Teuchos::broadcast(comm, 0, &solver);
+  run.memory.solver = static_cast<solvers::LinearSolverType>(solver);
+  run.scene->linear_solver.type = run.memory.solver;
   app::agree(comm, [&] {
     if (run.scene->loading.restart_file.empty()) return;
     app::check_checkpoint(*run.scene,

@@ -8,6 +8,7 @@
 
 #include <Teuchos_ParameterList.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -41,7 +42,7 @@ double available_memory()
 // indices, owned and overlapping rows) and copied once by the solver: about 2.5 x 12 bytes per entry. Direct solver
 // (MUMPS LDL^T): the fine mesh's measured 3.5 GB at 318,087 unknowns, grown as n^(4/3). ILU(k): k + 2 matrices.
 // Algebraic multigrid: the fine mesh's measured 2.2 GB (both ranks' peak resident memory in the solid benchmark,
-// against 3.8 GB with MUMPS there), grown as n.
+// against 3.8 GB with MUMPS in the same benchmark: the two models come from different runs), grown as n.
 struct MemoryModel {
   static constexpr double entries_per_unknown = 81.0, bytes_per_entry = 30.0;
   static constexpr double measured_unknowns = 318087.0, measured_bytes = 3.5e9, measured_multigrid_bytes = 2.2e9;
@@ -55,17 +56,22 @@ struct MemoryModel {
 
 constexpr double usable_memory = 0.9;   // of MemAvailable
 
+// A scene that jumps past instabilities factors the tangent with MUMPS LDL^T at every jump (the descent needs its
+// inertia) whatever the linear solver: an iterative solver then saves no peak memory.
 double solver_bytes(solvers::LinearSolverType type, const Scene& scene, double unknowns)
 {
+  const double jumps = scene.loading.past_instabilities == analysis::LoadPath::PastFolds::jump
+                           ? MemoryModel::direct(unknowns) : 0.0;
   switch (type) {
-    case solvers::LinearSolverType::gmres_ilu: return MemoryModel::iterative(unknowns, scene.linear_solver.fill_level);
-    case solvers::LinearSolverType::gmres_amg: return MemoryModel::multigrid(unknowns);
+    case solvers::LinearSolverType::gmres_ilu:
+      return std::max(jumps, MemoryModel::iterative(unknowns, scene.linear_solver.fill_level));
+    case solvers::LinearSolverType::gmres_amg: return std::max(jumps, MemoryModel::multigrid(unknowns));
     default: return MemoryModel::direct(unknowns);
   }
 }
 
 // The solver 'auto' picks: MUMPS while its factors fit in memory (it was the faster at every size measured here:
-// docs/solvers.md), else the algebraic multigrid.
+// docs/solvers.md), else the algebraic multigrid (which fits only where no jump needs the factors).
 solvers::LinearSolverType chosen_solver(const Scene& scene, double unknowns, double available_bytes)
 {
   if (scene.linear_solver.type != solvers::LinearSolverType::automatic) return scene.linear_solver.type;
@@ -216,14 +222,13 @@ MemoryEstimate estimate_memory(const Scene& scene, std::int64_t unrefined_nodes,
   estimate.matrix_entries = static_cast<std::int64_t>(MemoryModel::entries_per_unknown * estimate.unknowns);
   estimate.available_bytes = available_memory();
   estimate.solver = chosen_solver(scene, double(estimate.unknowns), estimate.available_bytes);
-  estimate.bytes = peak_bytes(scene, double(estimate.unknowns), estimate.available_bytes);
+  estimate.bytes = solver_bytes(estimate.solver, scene, double(estimate.unknowns));
   return estimate;
 }
 
 void check_memory(const Scene& scene, const MemoryEstimate& estimate)
 {
-  constexpr double usable = usable_memory;
-  if (estimate.available_bytes <= 0.0 || estimate.bytes <= usable * estimate.available_bytes) return;
+  if (estimate.available_bytes <= 0.0 || estimate.bytes <= usable_memory * estimate.available_bytes) return;
   const auto& m = scene.mesh;
   std::ostringstream message;
   message << "the mesh ('Mesh/level' = '" << m.level << "', 'Mesh/refinement factor' = " << m.refinement_factor
@@ -233,15 +238,20 @@ void check_memory(const Scene& scene, const MemoryEstimate& estimate)
           << gigabytes(estimate.available_bytes) << " available. ";
   int fits = 0;
   for (int r = 1; r < m.refinement_factor; ++r)
-    if (peak_bytes(scene, 3.0 * estimate.nodes_at(r), estimate.available_bytes) <= usable * estimate.available_bytes)
+    if (peak_bytes(scene, 3.0 * estimate.nodes_at(r), estimate.available_bytes) <= usable_memory * estimate.available_bytes)
       fits = r;
   if (fits > 0) message << "Allowed here: 'Mesh/refinement factor' <= " << fits << "";
   else if (!m.choice.empty()) message << "Raise 'Mesh/target error' (with 'Mesh/level' = auto) for a coarser mesh";
   else message << "Use a coarser 'Mesh/level' or fewer 'Mesh/layers'";
   if (estimate.solver == solvers::LinearSolverType::mumps) {
-    const double multigrid = MemoryModel::multigrid(double(estimate.unknowns));
+    auto multigrid_scene = scene;
+    multigrid_scene.linear_solver.type = solvers::LinearSolverType::gmres_amg;
+    const double multigrid = solver_bytes(multigrid_scene.linear_solver.type, multigrid_scene,
+                                          double(estimate.unknowns));
     message << ", or the iterative solver 'Linear Solver/type' = 'gmres-amg' (about " << gigabytes(multigrid)
-            << (multigrid <= usable * estimate.available_bytes ? ", fits" : ", does not fit either") << ")";
+            << (multigrid <= usable_memory * estimate.available_bytes ? ", fits" : ", does not fit either")
+            << (scene.loading.past_instabilities == analysis::LoadPath::PastFolds::jump
+                    ? ": the jumps past instabilities factor with MUMPS all the same" : "") << ")";
   }
   throw parameters::InputError(message.str());
 }

@@ -22,8 +22,9 @@ using Hierarchy = MueLu::TpetraOperator<double, LocalOrdinal, GlobalOrdinal, Nod
 namespace {
 
 // The MueLu parameters: those the probe of ../shared/spec/TRILINOS-NOTES.md found best for elasticity at the fine
-// mesh's size. MueLu's default coarse solver (Amesos2 KLU2) is wrong on more than one rank in Debian's build:
-// relaxation there.
+// mesh's size, but for the coarse solve on more than one rank: MueLu's default (Amesos2 KLU2) is wrong there in
+// Debian's build, and instead of the probe's repartitioning of the coarse levels onto one rank (which needs
+// coordinates) relaxation is used, which the probe measured at about 3 x the iterations.
 Teuchos::ParameterList multigrid_list(const Teuchos::Comm<int>& comm, Teuchos::RCP<MultiVector> modes)
 {
   Teuchos::ParameterList list("MueLu");
@@ -69,13 +70,13 @@ struct AlgebraicMultigrid::State {
 // a padding row (a fixed component) and every master row hold only a diagonal, 1 for padding rows.
 void AlgebraicMultigrid::State::build_pattern(const CrsMatrix& tangent)
 {
-  const auto& rows = blocks->row_of_unknown;
+  const auto& padded_row_of_unknown = blocks->row_of_unknown;
   const auto is_master = [this](GlobalOrdinal padded_row) {
     return padded_row >= blocks->master_block && padded_row < blocks->master_block + 3;
   };
   const auto& row_map = *tangent.getRowMap();
   const auto& column_map = *tangent.getColMap();
-  const auto local = tangent.getLocalMatrixHost();
+  const auto tangent_local = tangent.getLocalMatrixHost();
   const auto padded_rows = blocks->map->getNodeNumElements();
   std::vector<std::vector<GlobalOrdinal>> columns(padded_rows);
   for (std::size_t p = 0; p < padded_rows; ++p) columns[p].push_back(blocks->map->getGlobalElement(p));
@@ -83,12 +84,13 @@ void AlgebraicMultigrid::State::build_pattern(const CrsMatrix& tangent)
   padded_row_of_row = Kokkos::View<LocalOrdinal*, execution_space>("padded row of each tangent row", row_count);
   auto padded_row_host = Kokkos::create_mirror_view(padded_row_of_row);
   for (LocalOrdinal row = 0; row < row_count; ++row) {
-    const auto padded_row = rows[row_map.getGlobalElement(row)];
+    const auto padded_row = padded_row_of_unknown[row_map.getGlobalElement(row)];   // global
     padded_row_host(row) = blocks->map->getLocalElement(padded_row);
     if (is_master(padded_row)) continue;
-    for (auto k = local.graph.row_map(row); k < local.graph.row_map(row + 1); ++k) {
-      const auto column = rows[column_map.getGlobalElement(local.graph.entries(k))];
-      if (!is_master(column) && column != padded_row) columns[padded_row_host(row)].push_back(column);
+    for (auto k = tangent_local.graph.row_map(row); k < tangent_local.graph.row_map(row + 1); ++k) {
+      const auto padded_column = padded_row_of_unknown[column_map.getGlobalElement(tangent_local.graph.entries(k))];
+      if (!is_master(padded_column) && padded_column != padded_row)
+        columns[padded_row_host(row)].push_back(padded_column);
     }
   }
   Kokkos::deep_copy(padded_row_of_row, padded_row_host);
@@ -101,36 +103,42 @@ void AlgebraicMultigrid::State::build_pattern(const CrsMatrix& tangent)
   padded = Teuchos::rcp(new CrsMatrix(graph));
   padded->fillComplete();
 
-  // Each tangent entry's place among the padded row's (sorted) local columns.
-  const auto padded_local = padded->getLocalMatrixHost();
-  const auto& padded_columns = *padded->getColMap();
+  // Each tangent entry's place among the padded row's (sorted) local columns. (In a block of its own: the host view
+  // of the padded matrix must be gone before its device view is taken below.)
   target_of_entry = Kokkos::View<std::int64_t*, execution_space>("padded entry of each tangent entry",
-                                                                 local.values.extent(0));
-  auto target_host = Kokkos::create_mirror_view(target_of_entry);
-  const auto place = [&](LocalOrdinal padded_row, GlobalOrdinal padded_column) -> std::int64_t {
-    const auto begin = padded_local.graph.entries.data() + padded_local.graph.row_map(padded_row);
-    const auto end = padded_local.graph.entries.data() + padded_local.graph.row_map(padded_row + 1);
-    const auto column = padded_columns.getLocalElement(padded_column);
-    const auto found = std::lower_bound(begin, end, column);
-    if (found == end || *found != column) throw std::logic_error("AMG: padded tangent misses an entry");
-    return found - padded_local.graph.entries.data();
-  };
-  for (LocalOrdinal row = 0; row < row_count; ++row) {
-    const auto padded_row = rows[row_map.getGlobalElement(row)];
-    for (auto k = local.graph.row_map(row); k < local.graph.row_map(row + 1); ++k) {
-      const auto column = rows[column_map.getGlobalElement(local.graph.entries(k))];
-      const bool kept = is_master(padded_row) ? column == padded_row : !is_master(column);
-      target_host(k) = kept ? place(padded_row_host(row), column) : -1;
+                                                                 tangent_local.values.extent(0));
+  std::vector<std::int64_t> padding;   // the padding rows' diagonal entries
+  {
+    const auto padded_local = padded->getLocalMatrixHost();
+    const auto& padded_columns = *padded->getColMap();
+    auto target_host = Kokkos::create_mirror_view(target_of_entry);
+    const auto entry_of = [&](LocalOrdinal padded_row, GlobalOrdinal padded_column) -> std::int64_t {
+      const auto begin = padded_local.graph.entries.data() + padded_local.graph.row_map(padded_row);
+      const auto end = padded_local.graph.entries.data() + padded_local.graph.row_map(padded_row + 1);
+      const auto column = padded_columns.getLocalElement(padded_column);
+      const auto found = std::lower_bound(begin, end, column);
+      // Cannot happen (the graph was made from these entries): a logic error, not a collective failure.
+      if (found == end || *found != column) throw std::logic_error("AMG: padded tangent misses an entry");
+      return found - padded_local.graph.entries.data();
+    };
+    for (LocalOrdinal row = 0; row < row_count; ++row) {
+      const auto padded_row = padded_row_of_unknown[row_map.getGlobalElement(row)];
+      for (auto k = tangent_local.graph.row_map(row); k < tangent_local.graph.row_map(row + 1); ++k) {
+        const auto padded_column = padded_row_of_unknown[column_map.getGlobalElement(tangent_local.graph.entries(k))];
+        const bool kept = is_master(padded_row) ? padded_column == padded_row : !is_master(padded_column);
+        target_host(k) = kept ? entry_of(padded_row_host(row), padded_column) : -1;
+      }
     }
+    Kokkos::deep_copy(target_of_entry, target_host);
+    std::vector<char> has_unknown(padded_rows, 0);
+    for (LocalOrdinal row = 0; row < row_count; ++row) has_unknown[padded_row_host(row)] = 1;
+    for (std::size_t p = 0; p < padded_rows; ++p)
+      if (!has_unknown[p]) padding.push_back(entry_of(p, blocks->map->getGlobalElement(p)));
   }
-  Kokkos::deep_copy(target_of_entry, target_host);
-  // Padding rows: a unit diagonal (Chebyshev and the prolongator smoothing scale by the diagonal, so 1 is as good
-  // as any value), set where the values live (the device); rows with an unknown get theirs from the tangent.
-  std::vector<char> has_unknown(padded_rows, 0);
-  for (LocalOrdinal row = 0; row < row_count; ++row) has_unknown[padded_row_host(row)] = 1;
-  std::vector<std::int64_t> padding;
-  for (std::size_t p = 0; p < padded_rows; ++p)
-    if (!has_unknown[p]) padding.push_back(place(p, blocks->map->getGlobalElement(p)));
+  // Padding rows get a unit diagonal, set where the values live (the device); rows with an unknown get theirs from
+  // the tangent. The rigid-body modes are not zero there (zeroing them would leave aggregates of symmetry-plane
+  // nodes without a Y column), so the padding rows take part in the coarse operators: a spring of stiffness 1 nN/nm
+  // on each fixed component, which only the preconditioner sees.
   Kokkos::View<std::int64_t*, execution_space> padding_entries("padding diagonal entries", padding.size());
   Kokkos::deep_copy(padding_entries,
                     Kokkos::View<const std::int64_t*, Kokkos::HostSpace>(padding.data(), padding.size()));
@@ -167,7 +175,7 @@ public:
       padded_x_ = Teuchos::rcp(new MultiVector(state_->blocks->map, vectors));
       padded_y_ = Teuchos::rcp(new MultiVector(state_->blocks->map, vectors));
     }
-    state_->statistics.applications += static_cast<long>(vectors);
+    ++state_->statistics.applications;   // one application, whatever the number of vectors
     const auto rows = state_->padded_row_of_row;
     const auto policy = Kokkos::RangePolicy<execution_space>(0, rows.extent(0));
     {

@@ -53,7 +53,7 @@ void LinearSolverParameters::declare(Teuchos::ParameterList& list)
   parameters::declare_double(list, "tolerance", d.tolerance, "relative residual of each linear solve",
                              {0.0, 0.1, true, false});
   parameters::declare_int(list, "maximum iterations", d.maximum_iterations, "Krylov iterations per solve (gmres-ilu, gmres-amg: "
-                          "a gmres-amg solve that reaches it hands every later tangent to MUMPS)",
+                          "a gmres-amg tangent whose solves take that many V-cycles hands the later ones to MUMPS)",
                           Range::closed(1, 100000));
   parameters::declare_int(list, "ILU fill level", d.fill_level,
                           "level of fill of ILU(k) (gmres-ilu)", Range::closed(0, 8));

@@ -13,7 +13,7 @@
 //              that keeps the long-run cost per tangent near its minimum whatever the mesh size.
 //   gmres-ilu  Belos GMRES with Ifpack2 ILU(k) of each rank's rows (block Jacobi across ranks).
 //   gmres-amg  Belos GMRES with MueLu smoothed aggregation (algebraic_multigrid.hpp), its hierarchy reused across
-//              tangents; after a solve that reached `maximum iterations`, MUMPS serves every later tangent.
+//              tangents; after a tangent whose solves took `maximum iterations` V-cycles, MUMPS serves the later ones.
 //   auto       mumps where its factors fit in the memory available, else gmres-amg (chosen by the app).
 //
 // The MUMPS factorization object lives as long as the factory, so its symbolic analysis is reused by every
