@@ -107,8 +107,8 @@ int main(int argc, char** argv)
   Tpetra::ScopeGuard kokkos_scope(&argc, &argv);   // Kokkos starts here, not lazily at the first Tpetra::Map
   auto comm = Teuchos::DefaultComm<int>::getComm();
   if (argc < 3) {
-    std::cerr << "usage: solid_benchmark <coarse|medium|fine> <mumps|gmres-ilu|gmres-amg> [repetitions] [ordering=NAME] "
-                 "[low-rank=TOLERANCE] [lag=N]\n";
+    std::cerr << "usage: solid_benchmark <coarse|medium|fine> <mumps|gmres-ilu|gmres-amg> [repetitions] "
+                 "[ordering=NAME] [low-rank=TOLERANCE] [lag=N]\n";
     return 2;
   }
   const std::string level = argv[1], solver_type = argv[2];
@@ -215,10 +215,10 @@ int main(int argc, char** argv)
               << statistics.factorizations << "," << statistics.last_factorization_seconds << ","
               << statistics.factorization_flops / 1e9 << "," << statistics.factor_entries / 1e6 << ","
               << statistics.factorization_megabytes << "\n";
-    const auto& amg = linear.amg_statistics();
-    if (amg.setups > 0)
-      std::cerr << "solid_benchmark: AMG " << amg.setups << " hierarchies, " << amg.reuses << " reused, "
-                << amg.applications << " applications" << (amg.fell_back ? ", then MUMPS after a stalled solve" : "")
+    const auto& multigrid = linear.multigrid_statistics();
+    if (multigrid.setups > 0)
+      std::cerr << "solid_benchmark: AMG " << multigrid.setups << " hierarchies, " << multigrid.reuses << " reused, "
+                << multigrid.applications << " applications" << (multigrid.fell_back ? ", then MUMPS after a stalled solve" : "")
                 << "\n";
   }
   return 0;

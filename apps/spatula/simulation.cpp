@@ -414,10 +414,11 @@ std::optional<Stop> Run::finish(std::optional<analysis::Failure> failure, int in
       out_ << "; MUMPS: " << statistics.analyses << " analyses, " << statistics.factorizations << " factorizations ("
            << statistics.reused << " tangents served by an earlier one, " << statistics.factorization_seconds
            << " s), " << statistics.solves << " solves";
-    const auto& amg = linear_.amg_statistics();
-    if (amg.setups > 0)
-      out_ << "; AMG: " << amg.setups << " hierarchies, " << amg.reuses << " reused, " << amg.applications
-           << " applications" << (amg.fell_back ? ", then MUMPS after a stalled solve" : "");
+    const auto& multigrid = linear_.multigrid_statistics();
+    if (multigrid.setups > 0)
+      out_ << "; AMG: " << multigrid.setups << (multigrid.setups == 1 ? " hierarchy, " : " hierarchies, ")
+           << multigrid.reuses << " reused, " << multigrid.applications << " applications"
+           << (multigrid.fell_back ? ", then MUMPS after a stalled solve" : "");
     if (const auto* descents = path_.descent_statistics())
       out_ << "; jumps' energy descents: " << descents->analyses << " analyses, " << descents->factorizations
            << " factorizations (" << descents->factorization_seconds << " s), " << descents->solves << " solves ("

@@ -52,7 +52,7 @@ Teuchos::ParameterList multigrid_list(const Teuchos::Comm<int>& comm, Teuchos::R
 struct AlgebraicMultigrid::State {
   std::shared_ptr<const discretization::NodeBlocks> blocks;
   int stall_applications = 0;
-  AmgStatistics statistics;
+  MultigridStatistics statistics;
   long applications_at_init = 0;
 
   // The padded tangent, and where each entry of the tangent goes in it (-1: a master coupling, dropped).
@@ -200,9 +200,9 @@ private:
   mutable Teuchos::RCP<MultiVector> padded_x_, padded_y_;
 };
 
-class AmgPreconditionerFactory : public InversePreconditionerFactory {
+class MultigridPreconditionerFactory : public InversePreconditionerFactory {
 public:
-  AmgPreconditionerFactory(std::shared_ptr<AlgebraicMultigrid::State> state,
+  MultigridPreconditionerFactory(std::shared_ptr<AlgebraicMultigrid::State> state,
                            Teuchos::RCP<Thyra::PreconditionerFactoryBase<double>> fallback)
       : InversePreconditionerFactory("AMG"), state_(std::move(state)), fallback_(std::move(fallback))
   {
@@ -264,9 +264,9 @@ AlgebraicMultigrid::~AlgebraicMultigrid() = default;
 Teuchos::RCP<Thyra::PreconditionerFactoryBase<double>>
 AlgebraicMultigrid::preconditioner_factory(Teuchos::RCP<Thyra::PreconditionerFactoryBase<double>> fallback) const
 {
-  return Teuchos::rcp(new AmgPreconditionerFactory(state_, std::move(fallback)));
+  return Teuchos::rcp(new MultigridPreconditionerFactory(state_, std::move(fallback)));
 }
 
-const AmgStatistics& AlgebraicMultigrid::statistics() const { return state_->statistics; }
+const MultigridStatistics& AlgebraicMultigrid::statistics() const { return state_->statistics; }
 
 }  // namespace spatula::solvers

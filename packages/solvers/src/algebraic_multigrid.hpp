@@ -15,7 +15,7 @@
 
 namespace spatula::solvers {
 
-struct AmgStatistics {
+struct MultigridStatistics {
   int setups = 0;            // hierarchies built
   int reuses = 0;            // tangents that reused one
   long applications = 0;     // preconditioner applications (one per GMRES iteration, one more per restart cycle)
@@ -30,7 +30,7 @@ public:
   // A Thyra preconditioner factory over this hierarchy (Stratimikos makes one per linear solver it builds).
   Teuchos::RCP<Thyra::PreconditionerFactoryBase<double>>
   preconditioner_factory(Teuchos::RCP<Thyra::PreconditionerFactoryBase<double>> fallback) const;
-  const AmgStatistics& statistics() const;
+  const MultigridStatistics& statistics() const;
 
   struct State;
 

@@ -58,7 +58,8 @@ protected:
     return Teuchos::rcp_dynamic_cast<const discretization::CrsMatrix>(op->getConstTpetraOperator());
   }
   // Makes `inverse` (an operator on `map`) the preconditioner's.
-  static void hold(Thyra::PreconditionerBase<double>& preconditioner, const Teuchos::RCP<const discretization::Map>& map,
+  static void hold(Thyra::PreconditionerBase<double>& preconditioner,
+                   const Teuchos::RCP<const discretization::Map>& map,
                    const Teuchos::RCP<discretization::Operator>& inverse)
   {
     const auto space = Thyra::tpetraVectorSpace<double>(map);

@@ -52,8 +52,9 @@ void LinearSolverParameters::declare(Teuchos::ParameterList& list)
                              "available, else gmres-amg)", linear_solver_names());
   parameters::declare_double(list, "tolerance", d.tolerance, "relative residual of each linear solve",
                              {0.0, 0.1, true, false});
-  parameters::declare_int(list, "maximum iterations", d.maximum_iterations, "Krylov iterations per solve (gmres-ilu, gmres-amg: "
-                          "a gmres-amg tangent whose solves take that many V-cycles hands the later ones to MUMPS)",
+  parameters::declare_int(list, "maximum iterations", d.maximum_iterations,
+                          "Krylov iterations per solve (gmres-ilu, gmres-amg: a gmres-amg tangent whose solves take "
+                          "that many V-cycles hands the later ones to MUMPS)",
                           Range::closed(1, 100000));
   parameters::declare_int(list, "ILU fill level", d.fill_level,
                           "level of fill of ILU(k) (gmres-ilu)", Range::closed(0, 8));
@@ -154,9 +155,9 @@ private:
 };
 
 // gmres-amg's preconditioner factories: each over the one hierarchy, with MUMPS as the fallback.
-class AmgFactoryCreator : public Teuchos::AbstractFactory<Thyra::PreconditionerFactoryBase<double>> {
+class MultigridFactoryCreator : public Teuchos::AbstractFactory<Thyra::PreconditionerFactoryBase<double>> {
 public:
-  AmgFactoryCreator(LinearSolverParameters parameters, std::shared_ptr<const AlgebraicMultigrid> multigrid,
+  MultigridFactoryCreator(LinearSolverParameters parameters, std::shared_ptr<const AlgebraicMultigrid> multigrid,
                     std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver)
       : parameters_(std::move(parameters)), multigrid_(std::move(multigrid)), solver_(std::move(solver))
   {
@@ -241,7 +242,7 @@ LinearSolverFactory::LinearSolverFactory(const LinearSolverParameters& parameter
       "MUMPS");
   if (impl.multigrid)
     builder.setPreconditioningStrategyFactory(
-        Teuchos::rcp(new AmgFactoryCreator(parameters, impl.multigrid, impl.mumps)), "AMG");
+        Teuchos::rcp(new MultigridFactoryCreator(parameters, impl.multigrid, impl.mumps)), "AMG");
   using Ifpack2Factory = Thyra::Ifpack2PreconditionerFactory<discretization::CrsMatrix>;
   builder.setPreconditioningStrategyFactory(
       Teuchos::abstractFactoryStd<Thyra::PreconditionerFactoryBase<double>, Ifpack2Factory>(), "Ifpack2");
@@ -262,9 +263,9 @@ const MumpsStatistics& LinearSolverFactory::mumps_statistics() const
   return solver.is_null() ? implementation_->empty : solver->statistics();
 }
 
-const AmgStatistics& LinearSolverFactory::amg_statistics() const
+const MultigridStatistics& LinearSolverFactory::multigrid_statistics() const
 {
-  static const AmgStatistics none;
+  static const MultigridStatistics none;
   return implementation_->multigrid ? implementation_->multigrid->statistics() : none;
 }
 

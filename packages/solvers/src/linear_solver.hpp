@@ -83,7 +83,7 @@ public:
   // Statistics of the MUMPS factorizations (all zero for iterative solvers until gmres-amg falls back to MUMPS).
   const MumpsStatistics& mumps_statistics() const;
   // gmres-amg: hierarchies built, reused, preconditioner applications, and whether MUMPS has taken over.
-  const AmgStatistics& amg_statistics() const;
+  const MultigridStatistics& multigrid_statistics() const;
   const LinearSolverParameters& parameters() const;
 
 private:

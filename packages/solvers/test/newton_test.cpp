@@ -17,7 +17,7 @@ struct Equilibrium {
   Teuchos::RCP<discretization::Vector> x;
   solvers::NewtonResult result;
   double moment = 0.0, lift_force = 0.0;
-  solvers::AmgStatistics amg;
+  solvers::MultigridStatistics multigrid;
   int factorizations = 0;
 };
 
@@ -44,7 +44,7 @@ Equilibrium rotate(const solvers::LinearSolverParameters& linear_parameters, sol
   const auto evaluation = system->evaluate(*equilibrium.x, nullptr, false);
   equilibrium.moment = evaluation.master_residual[0];
   equilibrium.lift_force = evaluation.master_residual[1];
-  equilibrium.amg = linear.amg_statistics();
+  equilibrium.multigrid = linear.multigrid_statistics();
   equilibrium.factorizations = linear.mumps_statistics().factorizations;
   return equilibrium;
 }
@@ -102,14 +102,14 @@ TEST(Newton, AlgebraicMultigridGivesTheIteratesOfTheDirectSolver)
   const auto reference = rotate(direct, exact);
   ASSERT_TRUE(reference.result.converged) << reference.result.failure;
 
-  solvers::LinearSolverParameters amg;
-  amg.type = solvers::LinearSolverType::gmres_amg;
-  amg.tolerance = 1e-12;
-  const auto multigrid = rotate(amg, exact);
+  solvers::LinearSolverParameters algebraic;
+  algebraic.type = solvers::LinearSolverType::gmres_amg;
+  algebraic.tolerance = 1e-12;
+  const auto multigrid = rotate(algebraic, exact);
   ASSERT_TRUE(multigrid.result.converged) << multigrid.result.failure;
-  EXPECT_EQ(multigrid.amg.setups, 1);   // one hierarchy, reused by the later tangents
-  EXPECT_EQ(multigrid.amg.reuses + 1, static_cast<int>(multigrid.result.iterations.size()));
-  EXPECT_FALSE(multigrid.amg.fell_back);
+  EXPECT_EQ(multigrid.multigrid.setups, 1);   // one hierarchy, reused by the later tangents
+  EXPECT_EQ(multigrid.multigrid.reuses + 1, static_cast<int>(multigrid.result.iterations.size()));
+  EXPECT_FALSE(multigrid.multigrid.fell_back);
   EXPECT_EQ(multigrid.factorizations, 0);
   ASSERT_EQ(multigrid.result.iterations.size(), reference.result.iterations.size());
   const double f0 = reference.result.initial_residual_norm;
@@ -119,13 +119,13 @@ TEST(Newton, AlgebraicMultigridGivesTheIteratesOfTheDirectSolver)
   }
   EXPECT_LT(relative_difference(*reference.x, *multigrid.x), 1e-8);
 
-  amg.maximum_iterations = 2;   // too few for any solve: the first stalls, MUMPS serves the rest
-  amg.refactor = solvers::RefactorRule::lag;   // with fresh factors (one GMRES iteration each)
-  amg.lag = 0;
-  const auto rescued = rotate(amg, solvers::NewtonParameters{});
+  algebraic.maximum_iterations = 2;   // too few for any solve: the first stalls, MUMPS serves the rest
+  algebraic.refactor = solvers::RefactorRule::lag;   // with fresh factors (one GMRES iteration each)
+  algebraic.lag = 0;
+  const auto rescued = rotate(algebraic, solvers::NewtonParameters{});
   ASSERT_TRUE(rescued.result.converged) << rescued.result.failure;
-  EXPECT_TRUE(rescued.amg.fell_back);
-  EXPECT_EQ(rescued.amg.setups, 1);
+  EXPECT_TRUE(rescued.multigrid.fell_back);
+  EXPECT_EQ(rescued.multigrid.setups, 1);
   EXPECT_GE(rescued.factorizations, 1);
   EXPECT_LT(relative_difference(*reference.x, *rescued.x), 1e-8);
 }
