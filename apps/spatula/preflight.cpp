@@ -244,10 +244,8 @@ void check_memory(const Scene& scene, const MemoryEstimate& estimate)
   else if (!m.choice.empty()) message << "Raise 'Mesh/target error' (with 'Mesh/level' = auto) for a coarser mesh";
   else message << "Use a coarser 'Mesh/level' or fewer 'Mesh/layers'";
   if (estimate.solver == solvers::LinearSolverType::mumps) {
-    auto multigrid_scene = scene;
-    multigrid_scene.linear_solver.type = solvers::LinearSolverType::gmres_amg;
-    const double multigrid = solver_bytes(multigrid_scene.linear_solver.type, multigrid_scene,
-                                          double(estimate.unknowns));
+    const double multigrid =
+        solver_bytes(solvers::LinearSolverType::gmres_amg, scene, double(estimate.unknowns));
     message << ", or the iterative solver 'Linear Solver/type' = 'gmres-amg' (about " << gigabytes(multigrid)
             << (multigrid <= usable_memory * estimate.available_bytes ? ", fits" : ", does not fit either")
             << (scene.loading.past_instabilities == analysis::LoadPath::PastFolds::jump

@@ -201,13 +201,13 @@ Teuchos::RCP<Teuchos::ParameterList> stratimikos_list(const LinearSolverParamete
     gmres.set("Maximum Iterations", gmres_limit(p));
     gmres.set("Num Blocks", gmres_limit(p));
     list->set("Preconditioner Type", "MUMPS");
-  } else if (p.type == LinearSolverType::gmres_amg) {
-    gmres.set("Maximum Iterations", p.maximum_iterations);
-    gmres.set("Num Blocks", std::min(p.maximum_iterations, 200));
+    return list;
+  }
+  gmres.set("Maximum Iterations", p.maximum_iterations);   // the iterative preconditioners
+  gmres.set("Num Blocks", std::min(p.maximum_iterations, 200));
+  if (p.type == LinearSolverType::gmres_amg) {
     list->set("Preconditioner Type", "AMG");
   } else {
-    gmres.set("Maximum Iterations", p.maximum_iterations);
-    gmres.set("Num Blocks", std::min(p.maximum_iterations, 200));
     list->set("Preconditioner Type", "Ifpack2");
     auto& ifpack2 = list->sublist("Preconditioner Types").sublist("Ifpack2");
     ifpack2.set("Prec Type", "RILUK");   // on each rank's rows (block Jacobi between ranks)
