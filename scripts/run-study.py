@@ -25,6 +25,12 @@ number, else a string), `--set peel-rotation:Loading/theta_y=90` in one scene on
 own: they are not restored from or kept in docs/study-runs, and --docs is refused (benchmarks/speedup.py runs Table 6
 this way with the settings from before issue 15).
 
+Carrying a long run to another machine: with `--carry` the last checkpointed state of every run still going (its
+checkpoints, curve, scene and log) is copied to docs/study-runs/<level>/<scene>.stopped/ each time the run writes it;
+commit that, and the same command on a new machine resumes the run from there. `--scene NAME` (repeatable) runs only
+those scenes of the study, e.g. the fine runs still to come:
+`run-study.py all --mesh fine --carry --scene peel-rotation --scene pull-off-75 --scene rough-z0-4`.
+
 Results: <work>/<level>/<scene>/ per run, <work>/<level>/tables/*.csv and *.md, and with --docs docs/validation.md
 and its PNGs. Needs a build (build/apps/spatula/spatula). Runs already complete in <work> are not repeated. Each
 complete run's curve, scene, log (and a rotation's checkpoints) are kept in docs/study-runs/<level>/<scene>/ (commit
@@ -228,6 +234,60 @@ def restore(work, runs):
     return restored
 
 
+# With --carry, the last checkpointed state of every run still going is kept in ARCHIVE/<level>/<scene>.stopped/ as
+# the run writes it (every 'Output/checkpoint interval' minutes), with its curve, scene and log: commit it, and a
+# study on another machine (a new session) resumes the run from there instead of starting it again. Its fields are
+# not kept (the resumed run writes its fields from the state it resumes at).
+STOPPED_SUFFIX = '.stopped'
+CARRIED_FILES = ('checkpoints.h5', 'curve.csv', 'scene.xml', 'mesh_summary.csv', 'mesh_summary.txt', '.spatula-output')
+
+
+def carry(work, level, scene, carried):
+    """Copies the stopped-run files of the running or stopped <scene> into ARCHIVE/<level>/<scene>.stopped/ when its
+    checkpoints file has changed since the last copy (`carried`: file -> modification time copied)."""
+    for suffix in ('.partial', '.incomplete'):
+        source = os.path.join(work, level, scene + suffix)
+        checkpoints = os.path.join(source, 'checkpoints.h5')
+        if not os.path.exists(checkpoints):
+            continue
+        stamp = os.path.getmtime(checkpoints)
+        if carried.get(checkpoints) == stamp:
+            return
+        kept = os.path.join(ARCHIVE, level, scene + STOPPED_SUFFIX)
+        os.makedirs(kept + '.copying', exist_ok=True)
+        for name in CARRIED_FILES:
+            if os.path.exists(os.path.join(source, name)):
+                shutil.copyfile(os.path.join(source, name), os.path.join(kept + '.copying', name))
+        log = os.path.join(work, level, scene + '.log')
+        if os.path.exists(log):
+            shutil.copyfile(log, os.path.join(kept + '.copying', 'run.log'))
+        shutil.rmtree(kept, ignore_errors=True)
+        os.replace(kept + '.copying', kept)
+        carried[checkpoints] = stamp
+        return
+
+
+def restore_stopped(work, runs):
+    """Puts the carried stopped runs among `runs` that <work> has neither complete nor stopped back into <work> as
+    stopped runs (<scene>.incomplete/, which `spatula --resume` goes on from); returns them."""
+    restored = []
+    for level, scene in runs:
+        kept, directory = os.path.join(ARCHIVE, level, scene + STOPPED_SUFFIX), os.path.join(work, level)
+        if not os.path.exists(os.path.join(kept, 'checkpoints.h5')) or complete(directory, scene) or any(
+                os.path.exists(os.path.join(directory, scene + suffix)) for suffix in ('.partial', '.incomplete')):
+            continue
+        target_directory = os.path.join(directory, scene + '.incomplete')
+        os.makedirs(target_directory + '.restoring', exist_ok=True)
+        for name in os.listdir(kept):
+            if name != 'run.log':
+                shutil.copyfile(os.path.join(kept, name), os.path.join(target_directory + '.restoring', name))
+        if os.path.exists(os.path.join(kept, 'run.log')):
+            shutil.copyfile(os.path.join(kept, 'run.log'), os.path.join(directory, scene + '.log'))
+        os.replace(target_directory + '.restoring', target_directory)
+        restored.append((level, scene))
+    return restored
+
+
 def outcome(work, scene):
     """How a pull-off ended: detached, or stopped with the app's diagnosis (Delta u_z and Delta Pi_ext are then
     taken to the last converged state, just before the snap the jump could not follow)."""
@@ -314,11 +374,15 @@ def step_lines(log):
     return [l for l in lines if l.startswith('step ') or 'jump' in l or 'detachment' in l]
 
 
-def run_all(runs, work, jobs):
+def run_all(runs, work, jobs, carrying=False):
     """Runs the (level, scene) pairs not yet complete in <work>/<level>, `jobs` at a time (a stopped one resumed from
-    its last checkpoint); returns the failed ones."""
+    its last checkpoint; with `carrying`, also one carried in ARCHIVE); returns the failed ones."""
     for level, scene in restore(work, runs) if archiving() else []:
         print(f'[{level} {scene}] restored from {os.path.relpath(ARCHIVE, ROOT)}/ (complete)', flush=True)
+    for level, scene in restore_stopped(work, runs) if carrying else []:
+        print(f'[{level} {scene}] stopped run restored from {os.path.relpath(ARCHIVE, ROOT)}/{level}/{scene}'
+              f'{STOPPED_SUFFIX}/', flush=True)
+    carried = {}
     pending = [r for r in runs if not complete(os.path.join(work, r[0]), r[1])]
     running = {}
     failed = []
@@ -364,9 +428,13 @@ def run_all(runs, work, jobs):
                 process.send_signal(signal.SIGINT)
             for process, _, _ in running.values():
                 process.wait()
+            for level, scene in running if carrying else []:
+                carry(work, level, scene, carried)
             raise
         for run, (process, log, started) in list(running.items()):
             level, scene = run
+            if carrying:
+                carry(work, level, scene, carried)
             steps = step_lines(os.path.join(work, level, scene + '.log'))
             for line in steps[seen.get(run, 0):]:
                 wall = re.search(r'([\d.]+) s$', line.strip())
@@ -379,8 +447,11 @@ def run_all(runs, work, jobs):
                 print(f'[{level} {scene}] {status} after {time.time() - started:.0f} s', flush=True)
                 if process.returncode != 0:
                     failed.append(run)
+                    if carrying:
+                        carry(work, level, scene, carried)
                 elif archiving() and complete(os.path.join(work, level), scene):
                     archive(work, level, scene)
+                    shutil.rmtree(os.path.join(ARCHIVE, level, scene + STOPPED_SUFFIX), ignore_errors=True)
                 del running[run]
     return failed
 
@@ -395,8 +466,9 @@ def rotation_curve(work):
     if started(work, 'pull-off-60'):
         earlier = [r for r in read_curve(work, 'pull-off-60') if r['stage'] == 'rotation']
         earlier = earlier if len(earlier) > 1 else None
-    if complete(work, 'peel-rotation') or os.path.exists(os.path.join(work, 'peel-rotation.incomplete', 'curve.csv')):
-        rows = read_curve(work, 'peel-rotation')
+    run = rotation_run(work)
+    if run:
+        rows = read_curve(work, run)
         if earlier and rows and rows[0]['step'] > 0 and rows[0]['theta_y_deg'] > earlier[0]['theta_y_deg']:
             start = rows[0]['theta_y_deg']
             return [r for r in earlier if r['theta_y_deg'] < start - 1e-9] + rows, 'pull-off-60 + peel-rotation'
@@ -404,6 +476,22 @@ def rotation_curve(work):
     if earlier:
         return earlier, 'pull-off-60'
     return None, None
+
+
+# A peel by rotation kept under another name: the fine level's rotation from 60 deg (twelfth session), restarted from
+# the 60 deg state of the pull-off at 60 deg, whose checkpoints were lost with its machine. A study's own peel-rotation
+# run (from the undeformed state) takes its place once complete.
+EARLIER_ROTATION = 'peel-rotation-from-60'
+
+
+def rotation_run(work):
+    """The peel-rotation run a level's Table 4 reads: the study's own when complete, else the earlier one kept under
+    EARLIER_ROTATION, else the study's own stopped run (its curve up to where it stopped); None without any."""
+    if complete(work, 'peel-rotation'):
+        return 'peel-rotation'
+    if complete(work, EARLIER_ROTATION):
+        return EARLIER_ROTATION
+    return 'peel-rotation' if started(work, 'peel-rotation') else None
 
 
 def table4(work):
@@ -805,6 +893,11 @@ def main():
     parser.add_argument('--mesh', choices=LEVELS, help='run every scene of the study on this mesh level')
     parser.add_argument('--docs', action='store_true', help='write docs/validation.md and its figures')
     parser.add_argument('--no-run', action='store_true', help='only tabulate (and with --docs, document) the runs present')
+    parser.add_argument('--scene', action='append', default=[], metavar='SCENE',
+                        help="run only this scene of the study (repeat for more); the tables cover every run present")
+    parser.add_argument('--carry', action='store_true',
+                        help=f'keep the last checkpointed state of each run in docs/study-runs/<level>/<scene>'
+                             f'{STOPPED_SUFFIX}/ as it goes (commit it), and resume the runs kept there')
     parser.add_argument('--set', action='append', type=parse_override, default=[], metavar='[SCENE:]LIST/NAME=VALUE',
                         help="set a parameter in every scene (or in SCENE's only), e.g. --set 'Linear Solver/lag=4'; "
                              'such runs are neither restored from nor kept in docs/study-runs, and --docs is refused')
@@ -819,17 +912,25 @@ def main():
                                                                                              arguments.mesh)}
     if unknown:
         parser.error(f"--set names scene(s) not in study {arguments.study}: {', '.join(sorted(unknown))}")
+    if arguments.carry and not archiving():
+        parser.error('--carry keeps runs in docs/study-runs, which runs made with --set are not')
     if not os.path.exists(APP):
         sys.exit(f'{APP} not found: build first (bash scripts/build.sh)')
     runs = planned_runs(arguments.study, arguments.mesh)
+    if arguments.scene:
+        unknown = set(arguments.scene) - {scene for _, scene in runs}
+        if unknown:
+            parser.error(f"--scene names scene(s) not in study {arguments.study}: {', '.join(sorted(unknown))} "
+                         f"(its scenes: {', '.join(scene for _, scene in runs)})")
+        runs = [run for run in runs if run[1] in arguments.scene]
     started = time.time()
     for level, scene in runs if archiving() else []:   # complete runs of an earlier study not yet kept
         if complete(os.path.join(arguments.work, level), scene) and not complete(os.path.join(ARCHIVE, level), scene):
             archive(arguments.work, level, scene)
     if arguments.no_run and archiving():   # with --no-run, tabulate every kept run, at every level
         restore(arguments.work, [(level, scene) for level in LEVELS if os.path.isdir(os.path.join(ARCHIVE, level))
-                                 for scene in sorted(os.listdir(os.path.join(ARCHIVE, level)))])
-    failed = [] if arguments.no_run else run_all(runs, arguments.work, arguments.jobs)
+                                 for scene in sorted(os.listdir(os.path.join(ARCHIVE, level))) if '.' not in scene])
+    failed = [] if arguments.no_run else run_all(runs, arguments.work, arguments.jobs, arguments.carry)
     print(f'study {arguments.study}: {len(runs) - len(failed)} of {len(runs)} runs complete in '
           f'{time.time() - started:.0f} s' + (f'; failed: {", ".join(" ".join(f) for f in failed)}' if failed else ''),
           flush=True)

@@ -49,6 +49,7 @@ with tempfile.TemporaryDirectory() as work:
     peel[4]['after_jump'] = 1
     peel.append(state(77, 'rotation', 128.0, 0.0, 1))
     write(work, 'peel-rotation', peel)
+    peel_from_60 = peel
     rows, source = study.rotation_curve(work)
     check(source == 'pull-off-60 + peel-rotation', f'source {source}')
     thetas = [r['theta_y_deg'] for r in rows]
@@ -75,4 +76,23 @@ with tempfile.TemporaryDirectory() as work:
     labels = [label for label, _, _, _ in study.table4(work)[0]]
     check(labels[1:3] == ['31- (before the first drop)', '31+ (after it)'], f'first instability rows: {labels}')
 
-finish('rotation_curve: joined at a restart, first instability only in a curve from the undeformed state')
+with tempfile.TemporaryDirectory() as work:
+    # The fine level: the earlier rotation from 60 deg kept as EARLIER_ROTATION is joined as before while the study's
+    # own peel-rotation from the undeformed state has only stopped (its curve in peel-rotation.incomplete/) ...
+    write(work, 'pull-off-60', rotation + [state(71, 'lift', 60.0, 900.0)])
+    write(work, study.EARLIER_ROTATION, peel_from_60)
+    own = [state(i, 'rotation', theta, m) for i, (theta, m) in
+           enumerate(((4.9, 0.0), (20.0, 800.0), (31.0, 1300.0), (31.5, 900.0), (50.0, 1000.0)))]
+    own[3]['after_jump'] = 1
+    write(work, 'peel-rotation.incomplete', own)
+    rows, source = study.rotation_curve(work)
+    check(study.rotation_run(work) == study.EARLIER_ROTATION and source == 'pull-off-60 + peel-rotation'
+          and rows[-1]['theta_y_deg'] == 128.0, f'with the own run stopped: {study.rotation_run(work)}, {source}')
+    # ... and the own run is taken once complete.
+    write(work, 'peel-rotation', own + [state(5, 'rotation', 140.0, 0.0, 1)])
+    rows, source = study.rotation_curve(work)
+    check(study.rotation_run(work) == 'peel-rotation' and source == 'peel-rotation' and rows[0]['theta_y_deg'] == 4.9,
+          f'with the own run complete: {study.rotation_run(work)}, {source}')
+
+finish('rotation_curve: joined at a restart, first instability only in a curve from the undeformed state, the '
+       "study's own rotation preferred once complete")

@@ -1,0 +1,64 @@
+#!/usr/bin/env python3
+"""run-study.py --carry, on manufactured run directories: a running run's checkpoints, curve, scene and log are kept in
+the archive's <scene>.stopped/ (not its fields), again only when its checkpoints file changed; a new work directory
+gets the kept run back as a stopped run (<scene>.incomplete/ and its log) for `spatula --resume`, but not over a run
+it already has.
+
+    study_carry.py"""
+import importlib.util
+import os
+import sys
+import tempfile
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
+sys.path.insert(0, os.path.join(ROOT, 'scripts'))
+specification = importlib.util.spec_from_file_location('run_study', os.path.join(ROOT, 'scripts', 'run-study.py'))
+study = importlib.util.module_from_spec(specification)
+specification.loader.exec_module(study)
+from expectations import check, finish  # noqa: E402
+
+
+def write(path, text):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    open(path, 'w').write(text)
+
+
+with tempfile.TemporaryDirectory() as root:
+    study.ARCHIVE = os.path.join(root, 'archive')
+    work, fresh = os.path.join(root, 'work'), os.path.join(root, 'fresh')
+    running = os.path.join(work, 'fine', 'peel-rotation.partial')
+    for name, text in (('checkpoints.h5', 'state 1'), ('curve.csv', 'rows 1'), ('scene.xml', '<scene/>'),
+                       ('fields.h5', 'big'), ('.spatula-output', 'ours')):
+        write(os.path.join(running, name), text)
+    write(os.path.join(work, 'fine', 'peel-rotation.log'), 'log 1')
+    carried = {}
+    study.carry(work, 'fine', 'peel-rotation', carried)
+    kept = os.path.join(study.ARCHIVE, 'fine', 'peel-rotation' + study.STOPPED_SUFFIX)
+    check(sorted(os.listdir(kept)) == ['.spatula-output', 'checkpoints.h5', 'curve.csv', 'run.log', 'scene.xml'],
+          f'kept files: {sorted(os.listdir(kept))} (no fields)')
+    check(open(os.path.join(kept, 'checkpoints.h5')).read() == 'state 1', 'kept checkpoint')
+    # The curve grows between checkpoints: not copied again until the checkpoints file changes.
+    write(os.path.join(running, 'curve.csv'), 'rows 2')
+    study.carry(work, 'fine', 'peel-rotation', carried)
+    check(open(os.path.join(kept, 'curve.csv')).read() == 'rows 1', 'copied again without a new checkpoint')
+    write(os.path.join(running, 'checkpoints.h5'), 'state 2')
+    os.utime(os.path.join(running, 'checkpoints.h5'), (1e9, 1e9))
+    study.carry(work, 'fine', 'peel-rotation', carried)
+    check(open(os.path.join(kept, 'checkpoints.h5')).read() == 'state 2'
+          and open(os.path.join(kept, 'curve.csv')).read() == 'rows 2', 'not copied after a new checkpoint')
+
+    # A new machine: the kept run comes back as a stopped run with its log ...
+    restored = study.restore_stopped(fresh, [('fine', 'peel-rotation'), ('fine', 'rough-z0-4')])
+    check(restored == [('fine', 'peel-rotation')], f'restored {restored}')
+    stopped = os.path.join(fresh, 'fine', 'peel-rotation.incomplete')
+    check(os.path.exists(os.path.join(stopped, 'checkpoints.h5'))
+          and open(os.path.join(fresh, 'fine', 'peel-rotation.log')).read() == 'log 1'
+          and not os.path.exists(os.path.join(stopped, 'run.log')), 'restored stopped run and its log')
+    # ... but not over a stopped or complete run the work directory has.
+    write(os.path.join(stopped, 'checkpoints.h5'), 'newer')
+    check(study.restore_stopped(fresh, [('fine', 'peel-rotation')]) == []
+          and open(os.path.join(stopped, 'checkpoints.h5')).read() == 'newer', 'restored over a stopped run')
+    write(os.path.join(work, 'fine', 'peel-rotation', 'curve.csv'), 'complete')
+    check(study.restore_stopped(work, [('fine', 'peel-rotation')]) == [], 'restored over a complete run')
+
+finish('study_carry: stopped runs kept without fields when checkpointed, restored for --resume on a new machine')
