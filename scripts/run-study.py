@@ -929,7 +929,8 @@ def main():
             archive(arguments.work, level, scene)
     if arguments.no_run and archiving():   # with --no-run, tabulate every kept run, at every level
         restore(arguments.work, [(level, scene) for level in LEVELS if os.path.isdir(os.path.join(ARCHIVE, level))
-                                 for scene in sorted(os.listdir(os.path.join(ARCHIVE, level))) if '.' not in scene])
+                                 for scene in sorted(os.listdir(os.path.join(ARCHIVE, level)))
+                                 if not scene.endswith(STOPPED_SUFFIX)])
     failed = [] if arguments.no_run else run_all(runs, arguments.work, arguments.jobs, arguments.carry)
     print(f'study {arguments.study}: {len(runs) - len(failed)} of {len(runs)} runs complete in '
           f'{time.time() - started:.0f} s' + (f'; failed: {", ".join(" ".join(f) for f in failed)}' if failed else ''),
