@@ -76,9 +76,10 @@ std::string restart_label(const LoadingParameters& loading)
 
 void write_checkpoint(const std::string& file, const std::string& label, const discretization::DiscreteSystem& system,
                       const discretization::Vector& x, const analysis::LoadPoint& point, const PathStage& stage,
-                      const Scene& scene, const RunRecord& record)
+                      const Scene& scene, const RunRecord& record, const discretization::Vector* anchors)
 {
   const auto displacements = system.space_displacements(x);   // collective
+  const auto anchor_displacements = anchors ? system.space_displacements(*anchors) : std::vector<double>{};
   std::vector<double> masters;
   for (int m = 0; m < discretization::master_count; ++m) masters.push_back(system.master(x, discretization::Master(m)));
   if (system.owned_map()->getComm()->getRank() != 0) return;
@@ -98,6 +99,7 @@ void write_checkpoint(const std::string& file, const std::string& label, const d
     }
     out.write(group + "/displacements", displacements, 3);
     out.write(group + "/masters", masters);
+    if (anchors) out.write(group + "/anchors", anchor_displacements, 3);
     out.write(group + "/history", history(point));
     out.write(group + "/stage", std::vector<double>{stage.lifting ? 1.0 : 0.0, stage.lift_start});
     out.write(group + "/signature", values(signature(system.nodes(), scene)));
@@ -123,6 +125,22 @@ bool resumable(const std::string& file)
   } catch (const std::exception&) {
     return false;
   }
+}
+
+bool holds_anchors(const std::string& file)
+{
+  try {
+    io::Hdf5File in(file, io::Hdf5File::Mode::read);
+    return in.exists(std::string("/checkpoints/") + last_state_label + "/anchors");
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+void read_anchors(const Scene& scene, const discretization::DiscreteSystem& system, discretization::Vector& anchors)
+{
+  io::Hdf5File in(scene.loading.restart_file, io::Hdf5File::Mode::read);
+  system.set_space_displacements(anchors, in.read_doubles("/checkpoints/" + restart_label(scene.loading) + "/anchors"));
 }
 
 RunRecord read_run_record(const Scene& scene)

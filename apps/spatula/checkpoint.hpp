@@ -6,7 +6,9 @@
 // A checkpoint stores the displacements of every node of the node space (mesh and enrichment nodes), the three
 // end-face masters, the path history (step, external work) and the stage (rotation or lift, and where the lift
 // began), under /checkpoints/<label>, with a signature (node and element counts, enrichment, geometry, material)
-// checked on restart.
+// checked on restart. A run whose stiction anchors were set at its restart state ('Adhesion/stiction anchors' =
+// 'restart state') also stores that state's displacements (/anchors), so that a resumed run measures the travel
+// from the same anchors.
 #include "analysis/load_stepping.hpp"
 #include "scene.hpp"
 
@@ -39,13 +41,17 @@ struct RunRecord {
 
 // Rank 0 writes (all ranks must call: the state is gathered). A label already in the file is kept, except the last
 // state, which is replaced. The file is replaced as a whole (written beside it, then renamed): a run killed while
-// writing leaves the checkpoints it had.
+// writing leaves the checkpoints it had. `anchors`: the state the stiction anchors were set at, or nullptr.
 void write_checkpoint(const std::string& file, const std::string& label, const discretization::DiscreteSystem& system,
                       const discretization::Vector& x, const analysis::LoadPoint& point, const PathStage& stage,
-                      const Scene& scene, const RunRecord& record);
+                      const Scene& scene, const RunRecord& record, const discretization::Vector* anchors = nullptr);
 
 // Whether `file` holds a complete 'last state' checkpoint with its run record (a run that can be resumed).
 bool resumable(const std::string& file);
+// Whether the 'last state' checkpoint in `file` holds the state its stiction anchors were set at.
+bool holds_anchors(const std::string& file);
+// Reads the anchors' state stored with the scene's restart checkpoint into `anchors` (check holds_anchors before).
+void read_anchors(const Scene& scene, const discretization::DiscreteSystem& system, discretization::Vector& anchors);
 // The run record of the scene's restart checkpoint.
 RunRecord read_run_record(const Scene& scene);
 

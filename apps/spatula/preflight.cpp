@@ -160,13 +160,14 @@ std::string usable_ranges(const Scene& scene, mesh::Part part)
 std::string prepare_resume(Scene& scene)
 {
   const std::string key = "--resume with 'Output/directory' = '" + parameters::shorten(scene.output.directory) + "'";
-  if (scene.adhesion.settings.anchor_at_restart)
-    throw parameters::InputError(key + ": 'Adhesion/stiction anchors' = 'restart state' cannot be resumed (the "
-                                 "anchors are not in the checkpoint): run the scene again from its start");
   const auto stopped_runs = io::OutputDirectory::stopped_runs(scene.output.directory);
   for (const auto& stopped : stopped_runs) {
     const std::string file = (std::filesystem::path(stopped) / "checkpoints.h5").string();
     if (!resumable(file)) continue;
+    if (scene.adhesion.settings.anchor_at_restart && !holds_anchors(file))
+      throw parameters::InputError(key + ": 'Adhesion/stiction anchors' = 'restart state', but the last state in '" +
+                                   stopped + "' does not hold the anchors' state (a run stopped by a version before "
+                                   "they were checkpointed): run the scene again from its start");
     auto earlier = parameters::read_xml_file((std::filesystem::path(stopped) / "scene.xml").string());
     // A run stopped by an earlier version of the program lacks the parameters added since: they take their
     // defaults, as for any scene (a parameter is added with the default that keeps the behaviour before it). A

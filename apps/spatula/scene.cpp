@@ -84,7 +84,7 @@ Scene read_scene(Teuchos::ParameterList user)
                                    "from: 'Loading/restart file' is empty");
     if (!scene.loading.checkpoints.empty())
       throw parameters::InputError("parameter 'Adhesion/stiction anchors' = 'restart state' with 'Loading/checkpoints "
-                                   "at theta_y': checkpoints do not store the anchors, a restart from them would "
+                                   "at theta_y': a restart from such a checkpoint would set the anchors at its state and "
                                    "measure the travel from another state");
   }
   scene.validated = user;

@@ -146,6 +146,7 @@ private:
   std::unique_ptr<CurveWriter> curve_;
   Master stage_ = Master::rotation;
   PathStage path_stage_;   // where the path is: rotation, or lift from where
+  Teuchos::RCP<Vector> anchors_;   // the state the stiction anchors were set at ('restart state'), kept in checkpoints
   // The energies the curve counts from (the undeformed spatula, or the pad pressed onto a rough substrate) and the
   // peaks the detachment test compares with: kept in every checkpoint, so that a resumed run goes on with them.
   double initial_contact_ = 0.0, initial_internal_ = 0.0;
@@ -231,13 +232,14 @@ RunRecord Run::record_at(const analysis::LoadPoint& p) const
 
 void Run::write_last_state(const Vector& x, const analysis::LoadPoint& p)
 {
-  write_checkpoint(checkpoint_file(), last_state_label, *system_, x, p, path_stage_, scene_, record_at(p));
+  write_checkpoint(checkpoint_file(), last_state_label, *system_, x, p, path_stage_, scene_, record_at(p),
+                   anchors_.get());
 }
 
 void Run::write_checkpoint_at(double theta_y)
 {
   write_checkpoint(checkpoint_file(), checkpoint_label(theta_y), *system_, path_.state(), path_.last(), path_stage_,
-                   scene_, record_at(path_.last()));
+                   scene_, record_at(path_.last()), anchors_.get());
   if (root_) out_ << "checkpoint " << checkpoint_label(theta_y) << " written\n";
 }
 
@@ -331,7 +333,14 @@ void Run::start()
     auto x = system_->create_vector();
     auto history = read_checkpoint(scene_, *system_, *x, path_stage_);
     const bool anchor = scene_.adhesion.settings.anchor_at_restart;
-    if (anchor) system_->set_contact_anchors(*x);   // r_a = 0 here: the same energy and forces
+    if (anchor) {   // at the restart state (r_a = 0 there: the same energy and forces), or where the stopped run set them
+      anchors_ = system_->create_vector();
+      if (scene_.resume)
+        read_anchors(scene_, *system_, *anchors_);
+      else
+        anchors_->assign(*x);
+      system_->set_contact_anchors(*anchors_);
+    }
     if (scene_.resume) {   // a stopped run goes on with its own baseline, peaks, wall time and increment
       const auto record = read_run_record(scene_);
       initial_internal_ = record.initial_internal_energy;

@@ -125,5 +125,56 @@ status=0
 [ "$status" -eq 2 ] && grep -q "other 'Loading' parameters" other-load.log ||
   { fail "--resume with another load: exit $status"; cat other-load.log; }
 
+# A stiction pull-off whose anchors were set at its restart state ('Adhesion/stiction anchors' = 'restart state')
+# keeps that state in its checkpoints: `--resume` after SIGTERM measures the travel from the same anchors and ends
+# where the uninterrupted pull-off ends (anchored at the resumed state instead, the tangential forces would start
+# again from zero). Every step is checkpointed so the resumed run starts from the step it was stopped at; the
+# restarted curve counts on from the rotation's steps (its first lift step is step 6 here).
+tight_scene anchor-rotation 12 "" '<Parameter name="checkpoints at theta_y" type="string" value="12"/>' > anchor-rotation.xml
+"$app" anchor-rotation.xml > anchor-rotation.log 2>&1 || fail "the rotation the stiction pull-off starts from"
+stiction_scene() {   # directory
+  cat <<XML | tight_newton
+<ParameterList>
+  <ParameterList name="Adhesion"><Parameter name="law" type="string" value="stiction"/>
+    <Parameter name="stiction anchors" type="string" value="restart state"/></ParameterList>
+  <ParameterList name="Loading">
+    <Parameter name="type" type="string" value="lift"/>
+    <Parameter name="theta_y" type="double" value="12"/>
+    <Parameter name="restart file" type="string" value="anchor-rotation/checkpoints.h5"/>
+    <Parameter name="restart theta_y" type="double" value="12"/>
+    <Parameter name="final lift" type="double" value="45"/>
+    <Parameter name="final lift relative" type="bool" value="true"/>
+    <Parameter name="free slide during lift" type="bool" value="true"/>
+    <ParameterList name="Lift Steps"><Parameter name="initial" type="double" value="3"/>
+      <Parameter name="maximum" type="double" value="3"/></ParameterList>
+  </ParameterList>
+  <ParameterList name="Output"><Parameter name="directory" type="string" value="$1"/>
+    <Parameter name="write mesh" type="bool" value="false"/>
+    $every_step
+  </ParameterList>
+</ParameterList>
+XML
+}
+stiction_scene stiction-reference > stiction-reference.xml
+"$app" stiction-reference.xml > stiction-reference.log 2>&1 || { fail "the uninterrupted stiction pull-off"; tail -3 stiction-reference.log; }
+stiction_scene stiction-stopped > stiction-stopped.xml
+"$app" stiction-stopped.xml > stiction-stopped.log 2>&1 &
+pid=$!
+wait_for_step stiction-stopped.log 8 || fail "the stiction pull-off to stop did not start"
+kill -TERM "$pid"
+wait "$pid"
+"$app" stiction-stopped.xml --resume > stiction-resumed.log 2>&1 || { fail "--resume of the stiction pull-off"; tail -3 stiction-resumed.log; }
+/usr/bin/python3 - stiction-reference/curve.csv stiction-stopped/curve.csv <<'PY' || fail "the resumed stiction pull-off is not the uninterrupted one"
+import csv, sys
+a, b = (list(csv.DictReader(open(f))) for f in sys.argv[1:3])
+assert [r['step'] for r in a] == [r['step'] for r in b], ([r['step'] for r in a], [r['step'] for r in b])
+for ra, rb in zip(a, b):
+    for key in ('u_z_nm', 'P_z_nN', 'u_x_nm', 'Pi_int_1e-18J'):
+        x, y = float(ra[key]), float(rb[key])
+        assert abs(x - y) <= 1e-6 * max(1.0, abs(x)), (ra['step'], key, x, y)
+assert abs(float(a[-1]['u_x_nm'])) > 1e-3, 'no tangential travel: the test could not tell the anchors apart'
+print(f"resumed stiction pull-off: {len(b)} rows as uninterrupted to 1e-6 (u_x {float(b[-1]['u_x_nm']):.4f} nm)")
+PY
+
 [ "$failures" -eq 0 ] && echo "interrupted runs: stopped cleanly, resumable, never complete-looking"
 exit "$failures"
