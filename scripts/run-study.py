@@ -213,6 +213,7 @@ def archive(work, level, scene):
     log = os.path.join(work, level, scene + '.log')
     if os.path.exists(log):
         shutil.copyfile(log, os.path.join(kept, 'run.log'))
+    shutil.rmtree(kept + STOPPED_SUFFIX, ignore_errors=True)   # a carried stopped state of it is no longer needed
 
 
 def restore(work, runs):
@@ -248,21 +249,30 @@ def carry(work, level, scene, carried):
     for suffix in ('.partial', '.incomplete'):
         source = os.path.join(work, level, scene + suffix)
         checkpoints = os.path.join(source, 'checkpoints.h5')
-        if not os.path.exists(checkpoints):
-            continue
-        stamp = os.path.getmtime(checkpoints)
-        if carried.get(checkpoints) == stamp:
-            return
         kept = os.path.join(ARCHIVE, level, scene + STOPPED_SUFFIX)
-        os.makedirs(kept + '.copying', exist_ok=True)
-        for name in CARRIED_FILES:
-            if os.path.exists(os.path.join(source, name)):
-                shutil.copyfile(os.path.join(source, name), os.path.join(kept + '.copying', name))
-        log = os.path.join(work, level, scene + '.log')
-        if os.path.exists(log):
-            shutil.copyfile(log, os.path.join(kept + '.copying', 'run.log'))
-        shutil.rmtree(kept, ignore_errors=True)
+        try:
+            stamp = os.path.getmtime(checkpoints)
+            if carried.get(checkpoints) == stamp:
+                return
+            shutil.rmtree(kept + '.copying', ignore_errors=True)
+            os.makedirs(kept + '.copying')
+            # The log first: a checkpoint the log names is then in the copied file (the app writes the file before
+            # it logs), so a pull-off on the next machine never waits on a label the carried file lacks.
+            log = os.path.join(work, level, scene + '.log')
+            if os.path.exists(log):
+                shutil.copyfile(log, os.path.join(kept + '.copying', 'run.log'))
+            for name in CARRIED_FILES:
+                if os.path.exists(os.path.join(source, name)):
+                    shutil.copyfile(os.path.join(source, name), os.path.join(kept + '.copying', name))
+        except FileNotFoundError:   # the app renamed its directory meanwhile (finished, stopped, resumed): next poll
+            shutil.rmtree(kept + '.copying', ignore_errors=True)
+            continue
+        # Swapped in without a moment with no kept copy: the old one is moved aside first.
+        if os.path.exists(kept):
+            shutil.rmtree(kept + '.old', ignore_errors=True)
+            os.replace(kept, kept + '.old')
         os.replace(kept + '.copying', kept)
+        shutil.rmtree(kept + '.old', ignore_errors=True)
         carried[checkpoints] = stamp
         return
 
@@ -451,7 +461,6 @@ def run_all(runs, work, jobs, carrying=False):
                         carry(work, level, scene, carried)
                 elif archiving() and complete(os.path.join(work, level), scene):
                     archive(work, level, scene)
-                    shutil.rmtree(os.path.join(ARCHIVE, level, scene + STOPPED_SUFFIX), ignore_errors=True)
                 del running[run]
     return failed
 
@@ -922,16 +931,23 @@ def main():
         if unknown:
             parser.error(f"--scene names scene(s) not in study {arguments.study}: {', '.join(sorted(unknown))} "
                          f"(its scenes: {', '.join(scene for _, scene in runs)})")
-        runs = [run for run in runs if run[1] in arguments.scene]
+        chosen = set(arguments.scene)
+        for scene in arguments.scene:   # a pull-off needs the rotation it starts from (restored if complete)
+            if scene in DEPENDS and DEPENDS[scene] not in chosen:
+                print(f'--scene {scene}: with {DEPENDS[scene]}, which it starts from', flush=True)
+                chosen.add(DEPENDS[scene])
+        runs = [run for run in runs if run[1] in chosen]
     started = time.time()
     for level, scene in runs if archiving() else []:   # complete runs of an earlier study not yet kept
         if complete(os.path.join(arguments.work, level), scene) and not complete(os.path.join(ARCHIVE, level), scene):
             archive(arguments.work, level, scene)
-    if arguments.no_run and archiving():   # with --no-run, tabulate every kept run, at every level
+    failed = [] if arguments.no_run else run_all(runs, arguments.work, arguments.jobs, arguments.carry)
+    if archiving():   # the tables cover every kept run, at every level (also those no study runs, as the fine
+        # level's rotation from 60 deg, and the pull-off at 60 deg its Table 4 is joined to)
         restore(arguments.work, [(level, scene) for level in LEVELS if os.path.isdir(os.path.join(ARCHIVE, level))
                                  for scene in sorted(os.listdir(os.path.join(ARCHIVE, level)))
-                                 if not scene.endswith(STOPPED_SUFFIX)])
-    failed = [] if arguments.no_run else run_all(runs, arguments.work, arguments.jobs, arguments.carry)
+                                 if not scene.endswith((STOPPED_SUFFIX, STOPPED_SUFFIX + '.copying',
+                                                        STOPPED_SUFFIX + '.old'))])
     print(f'study {arguments.study}: {len(runs) - len(failed)} of {len(runs)} runs complete in '
           f'{time.time() - started:.0f} s' + (f'; failed: {", ".join(" ".join(f) for f in failed)}' if failed else ''),
           flush=True)

@@ -58,7 +58,20 @@ with tempfile.TemporaryDirectory() as root:
     write(os.path.join(stopped, 'checkpoints.h5'), 'newer')
     check(study.restore_stopped(fresh, [('fine', 'peel-rotation')]) == []
           and open(os.path.join(stopped, 'checkpoints.h5')).read() == 'newer', 'restored over a stopped run')
+    complete_only = os.path.join(root, 'complete-only')
+    write(os.path.join(complete_only, 'fine', 'peel-rotation', 'curve.csv'), 'complete')
+    check(study.restore_stopped(complete_only, [('fine', 'peel-rotation')]) == []
+          and not os.path.exists(os.path.join(complete_only, 'fine', 'peel-rotation.incomplete')),
+          'restored over a complete run')
+    # Archiving the complete run drops its carried stopped state.
     write(os.path.join(work, 'fine', 'peel-rotation', 'curve.csv'), 'complete')
-    check(study.restore_stopped(work, [('fine', 'peel-rotation')]) == [], 'restored over a complete run')
+    study.archive(work, 'fine', 'peel-rotation')
+    check(not os.path.exists(kept) and os.path.exists(os.path.join(study.ARCHIVE, 'fine', 'peel-rotation', 'curve.csv')),
+          'the carried state kept after the run was archived')
+    # A run directory renamed away by the app while it is carried: no error, nothing half-copied left.
+    carried = {}
+    study.carry(os.path.join(root, 'nowhere'), 'fine', 'rough-z0-4', carried)
+    check(not os.path.exists(os.path.join(study.ARCHIVE, 'fine', 'rough-z0-4' + study.STOPPED_SUFFIX + '.copying')),
+          'a half-copied carried state left')
 
 finish('study_carry: stopped runs kept without fields when checkpointed, restored for --resume on a new machine')

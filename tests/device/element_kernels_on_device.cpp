@@ -1,7 +1,8 @@
 // The laws and element kernels on a GPU backend (issue 18, item 4): every function a kernel reaches is compiled for
 // the device and run there on a batch of perturbed elements, and the device's energies, residuals and tangents are
 // compared with the host's (the same functions called on the host). Built by scripts/check-device-kernels.sh with
-// nvcc against a CUDA-enabled Kokkos; where the machine has no GPU it stops after compiling and linking, and says so.
+// nvcc against a CUDA-enabled Kokkos; where the machine has no GPU it stops after compiling and linking, says so and
+// exits with 77 (skipped); a GPU it cannot use (an NVIDIA driver too old for this CUDA) is a failure, not a skip.
 //
 // Covered: the Neo-Hookean law in Hex8 and Hex13 (Q1C2) solids, the frictionless Lennard-Jones law on flat and rough
 // substrates and the stiction law in Q1C2 contact faces (Quad9), and Q1C1 faces (Quad4). Not covered: the scatter
@@ -132,9 +133,19 @@ struct Kernels {
 int main(int argc, char** argv)
 {
   int devices = 0;
-  if (cudaGetDeviceCount(&devices) != cudaSuccess || devices == 0) {
+  const cudaError_t found = cudaGetDeviceCount(&devices);
+  // No GPU: no device, or no NVIDIA driver at all (the runtime then reports an insufficient driver as well).
+  std::FILE* version = std::fopen("/proc/driver/nvidia/version", "r");
+  const bool driver = version != nullptr;
+  if (version) std::fclose(version);
+  if (found == cudaErrorNoDevice || (found == cudaSuccess && devices == 0) ||
+      (found == cudaErrorInsufficientDriver && !driver)) {
     std::printf("element_kernels_on_device: compiled and linked for the device; no GPU here to run them on\n");
-    return 0;
+    return 77;
+  }
+  if (found != cudaSuccess) {
+    std::printf("element_kernels_on_device: the GPU cannot be used: %s\n", cudaGetErrorString(found));
+    return 1;
   }
   Kokkos::ScopeGuard guard(argc, argv);
   using Device = Kokkos::DefaultExecutionSpace;
@@ -155,8 +166,11 @@ int main(int argc, char** argv)
       const Fingerprint host = kernels(kind, element), device = copied(kind * elements_per_kind + element);
       const double pairs[3][2] = {{host.energy, device.energy}, {host.residual, device.residual},
                                   {host.tangent, device.tangent}};
-      for (const auto& pair : pairs)
-        worst = std::fmax(worst, std::fabs(pair[0] - pair[1]) / std::fmax(1e-300, std::fabs(pair[0])));
+      for (const auto& pair : pairs) {   // a non-finite value on either side, or an element with no energy, fails
+        const double difference = std::fabs(pair[0] - pair[1]) / std::fmax(1e-300, std::fabs(pair[0]));
+        if (!(difference <= worst)) worst = std::isfinite(pair[0]) && std::isfinite(pair[1]) ? difference : HUGE_VAL;
+      }
+      if (host.energy == 0.0) worst = HUGE_VAL;
     }
     const bool ok = worst < 1e-11;
     failures += !ok;
