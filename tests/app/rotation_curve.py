@@ -6,17 +6,15 @@ peel-rotation from the undeformed state is taken as it is, with its first instab
 
     rotation_curve.py"""
 import csv
-import importlib.util
 import os
 import sys
 import tempfile
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
 sys.path.insert(0, os.path.join(ROOT, 'scripts'))
-specification = importlib.util.spec_from_file_location('run_study', os.path.join(ROOT, 'scripts', 'run-study.py'))
-study = importlib.util.module_from_spec(specification)
-specification.loader.exec_module(study)
-from expectations import check, finish  # noqa: E402
+from expectations import check, finish, run_study  # noqa: E402
+
+study = run_study()
 
 COLUMNS = ('step', 'stage', 'theta_y_deg', 'M_y_nNnm', 'M_y_per_ER0^3', 'Pi_ext_1e-18J', 'Pi_ext_per_Pi_c0',
            'Pi_int_per_Pi_c0', 'Pi_sa_per_Pi_c0', 'balance_error_per_Pi_c0', 'after_jump')

@@ -5,17 +5,15 @@ gets the kept run back as a stopped run (<scene>.incomplete/ and its log) for `s
 it already has.
 
     study_carry.py"""
-import importlib.util
 import os
 import sys
 import tempfile
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
 sys.path.insert(0, os.path.join(ROOT, 'scripts'))
-specification = importlib.util.spec_from_file_location('run_study', os.path.join(ROOT, 'scripts', 'run-study.py'))
-study = importlib.util.module_from_spec(specification)
-specification.loader.exec_module(study)
-from expectations import check, finish  # noqa: E402
+from expectations import check, finish, run_study  # noqa: E402
+
+study = run_study()
 
 
 def write(path, text):

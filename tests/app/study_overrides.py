@@ -5,7 +5,6 @@ scenes alone, and a malformed entry is refused; the scenes it writes pass the ap
 
     study_overrides.py <spatula app>"""
 import argparse
-import importlib.util
 import os
 import re
 import subprocess
@@ -13,10 +12,9 @@ import sys
 import tempfile
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
-specification = importlib.util.spec_from_file_location('run_study', os.path.join(ROOT, 'scripts', 'run-study.py'))
-study = importlib.util.module_from_spec(specification)
-specification.loader.exec_module(study)
-from expectations import check, finish  # noqa: E402
+from expectations import check, finish, run_study  # noqa: E402
+
+study = run_study()
 
 
 def parameter(text, name):
