@@ -216,6 +216,18 @@ def archive(work, level, scene):
     shutil.rmtree(kept + STOPPED_SUFFIX, ignore_errors=True)   # a carried stopped state of it is no longer needed
 
 
+def put_back(kept, target_directory, log):
+    """Copies a kept run (complete or stopped) into target_directory, replacing it whole, and its run.log to `log`."""
+    os.makedirs(target_directory + '.restoring', exist_ok=True)
+    for name in os.listdir(kept):
+        if name != 'run.log':
+            shutil.copyfile(os.path.join(kept, name), os.path.join(target_directory + '.restoring', name))
+    if os.path.exists(os.path.join(kept, 'run.log')):
+        shutil.copyfile(os.path.join(kept, 'run.log'), log)
+    shutil.rmtree(target_directory, ignore_errors=True)
+    os.replace(target_directory + '.restoring', target_directory)
+
+
 def restore(work, runs):
     """Puts the archived complete runs among `runs` that <work> lacks back into <work>; returns them."""
     restored = []
@@ -223,14 +235,7 @@ def restore(work, runs):
         kept, target_directory = os.path.join(ARCHIVE, level, scene), os.path.join(work, level, scene)
         if complete(os.path.join(work, level), scene) or not os.path.exists(os.path.join(kept, 'curve.csv')):
             continue
-        os.makedirs(target_directory + '.restoring', exist_ok=True)
-        for name in os.listdir(kept):
-            if name != 'run.log':
-                shutil.copyfile(os.path.join(kept, name), os.path.join(target_directory + '.restoring', name))
-        if os.path.exists(os.path.join(kept, 'run.log')):
-            shutil.copyfile(os.path.join(kept, 'run.log'), os.path.join(work, level, scene + '.log'))
-        shutil.rmtree(target_directory, ignore_errors=True)
-        os.replace(target_directory + '.restoring', target_directory)
+        put_back(kept, target_directory, os.path.join(work, level, scene + '.log'))
         restored.append((level, scene))
     return restored
 
@@ -287,13 +292,7 @@ def restore_stopped(work, runs):
                 os.path.exists(os.path.join(directory, scene + suffix)) for suffix in ('.partial', '.incomplete')):
             continue
         target_directory = os.path.join(directory, scene + '.incomplete')
-        os.makedirs(target_directory + '.restoring', exist_ok=True)
-        for name in os.listdir(kept):
-            if name != 'run.log':
-                shutil.copyfile(os.path.join(kept, name), os.path.join(target_directory + '.restoring', name))
-        if os.path.exists(os.path.join(kept, 'run.log')):
-            shutil.copyfile(os.path.join(kept, 'run.log'), os.path.join(directory, scene + '.log'))
-        os.replace(target_directory + '.restoring', target_directory)
+        put_back(kept, target_directory, os.path.join(directory, scene + '.log'))
         restored.append((level, scene))
     return restored
 
