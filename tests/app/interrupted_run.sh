@@ -133,27 +133,9 @@ status=0
 tight_scene anchor-rotation 12 "" '<Parameter name="checkpoints at theta_y" type="string" value="12"/>' > anchor-rotation.xml
 "$app" anchor-rotation.xml > anchor-rotation.log 2>&1 || fail "the rotation the stiction pull-off starts from"
 stiction_scene() {   # directory
-  cat <<XML | tight_newton
-<ParameterList>
-  <ParameterList name="Adhesion"><Parameter name="law" type="string" value="stiction"/>
-    <Parameter name="stiction anchors" type="string" value="restart state"/></ParameterList>
-  <ParameterList name="Loading">
-    <Parameter name="type" type="string" value="lift"/>
-    <Parameter name="theta_y" type="double" value="12"/>
-    <Parameter name="restart file" type="string" value="anchor-rotation/checkpoints.h5"/>
-    <Parameter name="restart theta_y" type="double" value="12"/>
-    <Parameter name="final lift" type="double" value="45"/>
-    <Parameter name="final lift relative" type="bool" value="true"/>
-    <Parameter name="free slide during lift" type="bool" value="true"/>
-    <ParameterList name="Lift Steps"><Parameter name="initial" type="double" value="3"/>
-      <Parameter name="maximum" type="double" value="3"/></ParameterList>
-  </ParameterList>
-  <ParameterList name="Output"><Parameter name="directory" type="string" value="$1"/>
-    <Parameter name="write mesh" type="bool" value="false"/>
-    $every_step
-  </ParameterList>
-</ParameterList>
-XML
+  lift_scene "$1" stiction anchor-rotation/checkpoints.h5 12 45 3 \
+    '<Parameter name="stiction anchors" type="string" value="restart state"/>' \
+    '<Parameter name="free slide during lift" type="bool" value="true"/>' "$every_step" | tight_newton
 }
 stiction_scene stiction-reference > stiction-reference.xml
 "$app" stiction-reference.xml > stiction-reference.log 2>&1 || { fail "the uninterrupted stiction pull-off"; tail -3 stiction-reference.log; }

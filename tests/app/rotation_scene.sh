@@ -1,6 +1,9 @@
 # Sourced by the app tests: enter_scratch_directory makes a temporary working directory ($work, removed when the
 # script exits) and enters it; rotation_scene <directory> <final theta_y> [<extra Adhesion parameters> [<extra Loading
-# parameters> [<extra Output parameters>]]] prints a coarse frictionless rotation scene (steps of at most 2 deg, smallest 0.01, no mesh output).
+# parameters> [<extra Output parameters>]]] prints a coarse frictionless rotation scene (steps of at most 2 deg, smallest 0.01, no mesh output);
+# lift_scene <directory> <law> <restart file> <theta_y> <final lift> <lift step> [<extra Adhesion parameters> [<extra
+# Loading parameters> [<extra Output parameters>]]] prints a lift from a rotation's checkpoint at theta_y, by the final
+# lift from there in steps of the lift step (no mesh output).
 rotation_scene() {
   cat <<XML
 <ParameterList>
@@ -17,6 +20,31 @@ rotation_scene() {
   <ParameterList name="Output"><Parameter name="directory" type="string" value="$1"/>
     <Parameter name="write mesh" type="bool" value="false"/>
     ${5:-}
+  </ParameterList>
+</ParameterList>
+XML
+}
+
+lift_scene() {
+  cat <<XML
+<ParameterList>
+  <ParameterList name="Adhesion"><Parameter name="law" type="string" value="$2"/>
+    ${7:-}
+  </ParameterList>
+  <ParameterList name="Loading">
+    <Parameter name="type" type="string" value="lift"/>
+    <Parameter name="theta_y" type="double" value="$4"/>
+    <Parameter name="restart file" type="string" value="$3"/>
+    <Parameter name="restart theta_y" type="double" value="$4"/>
+    <Parameter name="final lift" type="double" value="$5"/>
+    <Parameter name="final lift relative" type="bool" value="true"/>
+    ${8:-}
+    <ParameterList name="Lift Steps"><Parameter name="initial" type="double" value="$6"/>
+      <Parameter name="maximum" type="double" value="$6"/></ParameterList>
+  </ParameterList>
+  <ParameterList name="Output"><Parameter name="directory" type="string" value="$1"/>
+    <Parameter name="write mesh" type="bool" value="false"/>
+    ${9:-}
   </ParameterList>
 </ParameterList>
 XML

@@ -61,23 +61,7 @@ print(f'restart at 12 deg reproduces the continuous run at 20 deg: M_y {float(b[
 PY
 lift() {   # directory, law, extra Adhesion parameters, extra Loading parameters: 2 nm of lift in 1 nm steps from
            # the 12 deg checkpoint
-  cat <<XML
-<ParameterList>
-  <ParameterList name="Adhesion"><Parameter name="law" type="string" value="$2"/>$3</ParameterList>
-  <ParameterList name="Loading">
-    <Parameter name="type" type="string" value="lift"/>$4
-    <Parameter name="theta_y" type="double" value="12"/>
-    <Parameter name="restart file" type="string" value="first/checkpoints.h5"/>
-    <Parameter name="restart theta_y" type="double" value="12"/>
-    <Parameter name="final lift" type="double" value="2"/>
-    <Parameter name="final lift relative" type="bool" value="true"/>
-    <ParameterList name="Lift Steps"><Parameter name="initial" type="double" value="1"/>
-      <Parameter name="maximum" type="double" value="1"/></ParameterList>
-  </ParameterList>
-  <ParameterList name="Output"><Parameter name="directory" type="string" value="$1"/>
-    <Parameter name="write mesh" type="bool" value="false"/></ParameterList>
-</ParameterList>
-XML
+  lift_scene "$1" "$2" first/checkpoints.h5 12 2 1 "$3" "$4"
 }
 anchors='<Parameter name="stiction anchors" type="string" value="restart state"/>'
 lift frictionless frictionless "" "" > frictionless.xml
