@@ -377,7 +377,7 @@ std::variant<double, Failure> LoadPath::pass_fold(Master controlled, double unre
   const char* name = load_name(controlled);
   if (past_folds_ == PastFolds::jump) {   // an instability: jump at the unreached load to the far side
     if (log_) *log_ << "  " << name << " = " << load_text(unreached / unit) << ": no equilibrium near the last one "
-                    << "(an instability); jumping to the next stable state\n";
+                    << "(an instability); jumping to the next stable state" << std::endl;
     auto failure = jump(controlled, unreached, on_point);
     system.set_control(control);
     if (failure) {
@@ -520,6 +520,7 @@ struct LoadPath::Descent {
   DescentCost cost;               // refactor = cost: the current factors' cycle
   double cycle_began = 0.0;       // when fresh factors were last asked for (set as each descent call begins)
   double residual = 0.0;          // |f| at the last iteration [nN]
+  double began = now(), reported = now();   // a progress line at least every minute of a long descent
   std::ostringstream table;
 
   // The kept factors are given up: a new cycle begins.
@@ -645,6 +646,14 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
     // with a shift is tested once without it: is the unshifted tangent positive definite there? (Without this a
     // descent that has reached the minimum keeps raising the shift, since no step can lower Pi any more.)
     d.residual = point.residual;
+    if (log_ && now() - d.reported >= 60.0) {   // (only rank 0 has a log: no collective depends on this clock)
+      d.reported = now();
+      std::ostringstream line;   // formatted apart: the log's own format stays as it is
+      line << "  descent: iteration " << d.iteration << ", |f| = " << std::scientific << std::setprecision(2)
+           << point.residual << " nN, Pi = " << std::fixed << std::setprecision(4) << point.energy << " nN nm, "
+           << std::setprecision(1) << (d.reported - d.began) / 60.0 << " min";
+      *log_ << line.str() << std::endl;
+    }
     if (point.residual < small_gradient && (d.eta == 0.0 || !d.unshifted_tried || !fresh)) {
       d.row(tables_, fresh ? point.negative_pivots : -1, point.residual, 0.0, point.energy);
       if (!fresh) {   // the tests below need the inertia at this state
