@@ -57,8 +57,9 @@ function(spatula_test name)
       add_test(NAME ${test_name} COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} ${ranks}
                ${SPATULA_MPIEXEC_FLAGS} $<TARGET_FILE:${name}>)
     endif()
-    set_tests_properties(${test_name} PROPERTIES PROCESSORS ${ranks}
-      ENVIRONMENT "OMPI_MCA_rmaps_base_oversubscribe=1;OMP_NUM_THREADS=1;KOKKOS_NUM_THREADS=${SPATULA_TEST_KOKKOS_THREADS}")
+    math(EXPR processors "${ranks} * ${SPATULA_TEST_KOKKOS_THREADS}")   # cores the test keeps busy
+    set_tests_properties(${test_name} PROPERTIES PROCESSORS ${processors}
+      ENVIRONMENT "OMPI_MCA_rmaps_base_oversubscribe=1;OMP_NUM_THREADS=1;OMP_PROC_BIND=false;KOKKOS_NUM_THREADS=${SPATULA_TEST_KOKKOS_THREADS}")
     if(ARG_LABELS)
       set_tests_properties(${test_name} PROPERTIES LABELS "${ARG_LABELS}")
     endif()
