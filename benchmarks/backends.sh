@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# Kokkos backends against MPI ranks (issue 18, item 3), in one run on a quiet machine: the project built against
+# Debian's Serial Trilinos (build/) and against the OpenMP Trilinos of scripts/build-trilinos.sh (build-openmp/), in
+# four configurations: Serial 1 rank, Serial 2 ranks, OpenMP 1 rank with 1 thread, OpenMP 1 rank with 2 threads.
+#
+#   bash benchmarks/backends.sh [--serial-build DIR] [--openmp-build DIR] [--levels "medium fine"] [--repetitions N]
+#
+# For each level it runs
+#   scatter_benchmark (the bulk solid's assembly, atomics against colouring; 1 rank): elements/s each way;
+#   solid_benchmark mumps (the whole system's assembly, residual and tangent, and a Newton step of a 2.5 deg rotation):
+#     elements/s and the Newton iteration split into assembly and linear solve;
+# and on the medium mesh one whole run: the default scene (Q1C2 frictionless rotation) on the medium mesh to 20 deg,
+# wall seconds. BLAS and MUMPS stay on one thread (OMP_NUM_THREADS=1, OPENBLAS_NUM_THREADS=1); Kokkos' threads are
+# KOKKOS_NUM_THREADS. Writes docs/backends.csv (one row per level, configuration and measurement) and prints it.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+serial="$root/build" openmp="$root/build-openmp" levels="medium fine" repetitions=5
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --serial-build) serial=$(cd "$2" && pwd); shift 2 ;;
+    --openmp-build) openmp=$(cd "$2" && pwd); shift 2 ;;
+    --levels) levels=$2; shift 2 ;;
+    --repetitions) repetitions=$2; shift 2 ;;
+    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
+    *) echo "backends.sh: unknown option '$1' (allowed: --serial-build DIR, --openmp-build DIR, --levels LIST, --repetitions N)" >&2; exit 2 ;;
+  esac
+done
+for build in "$serial" "$openmp"; do
+  for program in benchmarks/scatter_benchmark benchmarks/solid_benchmark apps/spatula/spatula; do
+    [ -x "$build/$program" ] || { echo "backends.sh: $build/$program is missing (build the project there first)" >&2; exit 2; }
+  done
+done
+header=$(sed -n 's/^SPATULA_KOKKOS_CONFIG_HEADER:FILEPATH=//p' "$openmp/CMakeCache.txt")
+grep -qs '^#define KOKKOS_ENABLE_OPENMP' "$header" ||
+  { echo "backends.sh: $openmp is not built against a Kokkos with OpenMP" >&2; exit 2; }
+
+export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 OMP_PROC_BIND=false
+mpi=(mpiexec --allow-run-as-root --oversubscribe --bind-to none)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+csv="$root/docs/backends.csv"
+echo "level,configuration,measurement,value" > "$work/backends.csv"
+record() { echo "$1,$2,$3,$4" >> "$work/backends.csv"; echo "$1,$2,$3,$4"; }
+# configuration name, build, ranks, Kokkos threads
+configurations=("Serial 1 rank|$serial|1|1" "Serial 2 ranks|$serial|2|1" "OpenMP 1 thread|$openmp|1|1"
+                "OpenMP 2 threads|$openmp|1|2")
+column() { python3 -c 'import csv,sys; r=list(csv.DictReader(sys.stdin)); print(r[-1][sys.argv[1]])' "$1"; }
+
+for level in $levels; do
+  for configuration in "${configurations[@]}"; do
+    IFS='|' read -r name build ranks threads <<< "$configuration"
+    [ "$ranks" = 1 ] || continue
+    out=$(KOKKOS_NUM_THREADS=$threads "$build/benchmarks/scatter_benchmark" "$level" "$repetitions")
+    record "$level" "$name" "scatter atomic elements/s" "$(echo "$out" | column atomic_elements_per_s)"
+    record "$level" "$name" "scatter coloured elements/s" "$(echo "$out" | column coloured_elements_per_s)"
+    record "$level" "$name" "scatter matrices' relative difference" "$(echo "$out" | column relative_matrix_difference)"
+  done
+  for configuration in "${configurations[@]}"; do
+    IFS='|' read -r name build ranks threads <<< "$configuration"
+    out=$(KOKKOS_NUM_THREADS=$threads "${mpi[@]}" -np "$ranks" "$build/benchmarks/solid_benchmark" "$level" mumps "$repetitions")
+    for key in residual_elements_per_s tangent_elements_per_s newton_s_per_iteration assembly_s_per_iteration \
+               linear_s_per_iteration; do
+      record "$level" "$name" "solid $key" "$(echo "$out" | column $key)"
+    done
+  done
+done
+
+# A whole run: the default scene on the medium mesh to 20 deg.
+sed -e 's#value="coarse"#value="medium"#' -e 's#name="theta_y" type="double" value="90"#name="theta_y" type="double" value="20"#' \
+    -e 's#value="spatula-output"#value="whole-run"#' "$root/xml/default.xml" > "$work/whole-run.xml"
+for configuration in "${configurations[@]}"; do
+  IFS='|' read -r name build ranks threads <<< "$configuration"
+  rm -rf "$work/whole-run"
+  start=$(date +%s.%N)
+  (cd "$work" && KOKKOS_NUM_THREADS=$threads "${mpi[@]}" -np "$ranks" "$build/apps/spatula/spatula" whole-run.xml > whole-run.log 2>&1) ||
+    { echo "backends.sh: the whole run failed ($name), see:" >&2; tail -5 "$work/whole-run.log" >&2; exit 1; }
+  record medium "$name" "whole run to 20 deg, wall s" "$(python3 -c "import sys; print(round(float(sys.argv[2]) - float(sys.argv[1]), 2))" "$start" "$(date +%s.%N)")"
+  record medium "$name" "whole run to 20 deg, M_y at the end (nN nm)" "$(column M_y_nNnm < "$work/whole-run/curve.csv")"
+done
+cp "$work/backends.csv" "$csv"
+echo "backends.sh: wrote $csv"
