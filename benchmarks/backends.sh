@@ -4,21 +4,23 @@
 # four configurations: Serial 1 rank, Serial 2 ranks, OpenMP 1 rank with 1 thread, OpenMP 1 rank with 2 threads.
 #
 #   bash benchmarks/backends.sh [--serial-build DIR] [--openmp-build DIR] [--levels "medium fine"] [--repetitions N]
-#                               [--whole-runs N]
+#                               [--whole-runs N] [--whole-run-levels "medium"] [--whole-runs-only] [--csv FILE]
 #
 # For each level it runs
 #   scatter_benchmark (the bulk solid's assembly, atomics against colouring; 1 rank): elements/s each way;
 #   solid_benchmark mumps (the whole system's assembly, residual and tangent, and a Newton step of a 2.5 deg rotation):
 #     elements/s and the Newton iteration split into assembly and linear solve;
-# and on the medium mesh whole runs: the default scene (Q1C2 frictionless rotation) on the medium mesh to 20 deg, wall
-# seconds, --whole-runs times per configuration (default 3), the configurations taken in turn, and the median recorded
-# (single whole runs here vary by 20 % from one to the next). Kokkos' threads are KOKKOS_NUM_THREADS and
+# and whole runs on each of --whole-run-levels (default medium): the default scene (Q1C2 frictionless rotation) on that
+# mesh to 20 deg, wall seconds, --whole-runs times per configuration (default 3), the configurations taken in turn, and
+# the median recorded (single whole runs here vary by up to 32 % from one to the next). --whole-runs-only skips the
+# benchmarks. Kokkos' threads are KOKKOS_NUM_THREADS and
 # OMP_NUM_THREADS (equal, so that Kokkos does not warn of oversubscription); BLAS stays on one thread
 # (OPENBLAS_NUM_THREADS=1; Debian's MUMPS has no OpenMP). Writes docs/backends.csv (one row per level, configuration
-# and measurement) and prints it.
+# and measurement; --csv another file) and prints it.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 serial="$root/build" openmp="$root/build-openmp" levels="medium fine" repetitions=5 whole_runs=3
+whole_levels=medium kernels=1 csv="$root/docs/backends.csv"
 while [ $# -gt 0 ]; do
   case "$1" in
     --serial-build) serial=$(cd "$2" && pwd); shift 2 ;;
@@ -26,8 +28,11 @@ while [ $# -gt 0 ]; do
     --levels) levels=$2; shift 2 ;;
     --repetitions) repetitions=$2; shift 2 ;;
     --whole-runs) whole_runs=$2; shift 2 ;;
-    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
-    *) echo "backends.sh: unknown option '$1' (allowed: --serial-build DIR, --openmp-build DIR, --levels LIST, --repetitions N, --whole-runs N)" >&2; exit 2 ;;
+    --whole-run-levels) whole_levels=$2; shift 2 ;;
+    --whole-runs-only) kernels=0; shift ;;
+    --csv) csv=$(cd "$(dirname "$2")" && pwd)/$(basename "$2"); shift 2 ;;
+    -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
+    *) echo "backends.sh: unknown option '$1' (allowed: --serial-build DIR, --openmp-build DIR, --levels LIST, --repetitions N, --whole-runs N, --whole-run-levels LIST, --whole-runs-only, --csv FILE)" >&2; exit 2 ;;
   esac
 done
 for build in "$serial" "$openmp"; do
@@ -43,7 +48,6 @@ export OPENBLAS_NUM_THREADS=1 OMP_PROC_BIND=false
 mpi=(mpiexec --allow-run-as-root --oversubscribe --bind-to none)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-csv="$root/docs/backends.csv"
 echo "level,configuration,measurement,value" > "$work/backends.csv"
 record() { echo "$1,$2,$3,$4" >> "$work/backends.csv"; echo "$1,$2,$3,$4"; }
 # configuration name, build, ranks, Kokkos threads
@@ -58,6 +62,7 @@ header = max(i for i, line in enumerate(lines) if line.startswith(("level,", "st
 print(list(csv.DictReader(lines[header:]))[-1][sys.argv[1]])' "$1"; }
 threaded() { KOKKOS_NUM_THREADS=$1 OMP_NUM_THREADS=$1 "${@:2}"; }
 
+[ "$kernels" = 1 ] || levels=""
 for level in $levels; do
   for configuration in "${configurations[@]}"; do
     IFS='|' read -r name build ranks threads <<< "$configuration"
@@ -77,35 +82,38 @@ for level in $levels; do
   done
 done
 
-# Whole runs: the default scene on the medium mesh to 20 deg, the configurations in turn, --whole-runs rounds. Besides
+# Whole runs: the default scene on each level's mesh to 20 deg, the configurations in turn, --whole-runs rounds. Besides
 # the wall time, the run's own phase timers (rank 0): assembly (bulk and contact, residual and tangent) and the linear
 # solver (MUMPS analysis, factorizations, solves), so that the solver's share is read from the same runs.
-sed -e 's#value="coarse"#value="medium"#' -e 's#name="theta_y" type="double" value="90"#name="theta_y" type="double" value="20"#' \
-    -e 's#value="spatula-output"#value="whole-run"#' "$root/xml/default.xml" > "$work/whole-run.xml"
 timer_sum() {   # the seconds of the timers whose names start with $1, summed, from a run's log
   awk -v prefix="spatula: $1" 'index($0, prefix) == 1 && match($0, /  [0-9.e+-]+ \(/) { total += substr($0, RSTART, RLENGTH - 2) }
                                 END { printf "%.3f\n", total }' "$2"; }
-for round in $(seq "$whole_runs"); do
+median() { sort -g | awk '{ value[NR] = $1 } END { print (NR % 2) ? value[(NR + 1) / 2] : (value[NR / 2] + value[NR / 2 + 1]) / 2 }'; }
+for level in $whole_levels; do
+  sed -e "s#value=\"coarse\"#value=\"$level\"#" -e 's#name="theta_y" type="double" value="90"#name="theta_y" type="double" value="20"#' \
+      -e 's#value="spatula-output"#value="whole-run"#' "$root/xml/default.xml" > "$work/whole-run.xml"
+  rm -f "$work"/whole-*.txt
+  for round in $(seq "$whole_runs"); do
+    for index in "${!configurations[@]}"; do
+      IFS='|' read -r name build ranks threads <<< "${configurations[$index]}"
+      rm -rf "$work/whole-run"
+      start=$(date +%s.%N)
+      (cd "$work" && threaded "$threads" "${mpi[@]}" -np "$ranks" "$build/apps/spatula/spatula" whole-run.xml > whole-run.log 2>&1) ||
+        { echo "backends.sh: the whole run failed ($level, $name), see:" >&2; tail -5 "$work/whole-run.log" >&2; exit 1; }
+      wall=$(python3 -c "import sys; print(round(float(sys.argv[2]) - float(sys.argv[1]), 2))" "$start" "$(date +%s.%N)")
+      echo "$wall $(timer_sum assembly "$work/whole-run.log") $(timer_sum 'linear solve' "$work/whole-run.log")" >> "$work/whole-$index.txt"
+      echo "$level, round $round, $name: $wall s wall"
+      moment[$index]=$(column M_y_nNnm < "$work/whole-run/curve.csv")
+    done
+  done
   for index in "${!configurations[@]}"; do
     IFS='|' read -r name build ranks threads <<< "${configurations[$index]}"
-    rm -rf "$work/whole-run"
-    start=$(date +%s.%N)
-    (cd "$work" && threaded "$threads" "${mpi[@]}" -np "$ranks" "$build/apps/spatula/spatula" whole-run.xml > whole-run.log 2>&1) ||
-      { echo "backends.sh: the whole run failed ($name), see:" >&2; tail -5 "$work/whole-run.log" >&2; exit 1; }
-    wall=$(python3 -c "import sys; print(round(float(sys.argv[2]) - float(sys.argv[1]), 2))" "$start" "$(date +%s.%N)")
-    echo "$wall $(timer_sum assembly "$work/whole-run.log") $(timer_sum 'linear solve' "$work/whole-run.log")" >> "$work/whole-$index.txt"
-    echo "round $round, $name: $wall s wall"
-    moment[$index]=$(column M_y_nNnm < "$work/whole-run/curve.csv")
+    record "$level" "$name" "whole run to 20 deg, median wall s of $whole_runs" "$(cut -d' ' -f1 "$work/whole-$index.txt" | median)"
+    record "$level" "$name" "whole run to 20 deg, wall s of each run" "$(cut -d' ' -f1 "$work/whole-$index.txt" | paste -sd' ')"
+    record "$level" "$name" "whole run to 20 deg, median assembly s" "$(cut -d' ' -f2 "$work/whole-$index.txt" | median)"
+    record "$level" "$name" "whole run to 20 deg, median linear solver s" "$(cut -d' ' -f3 "$work/whole-$index.txt" | median)"
+    record "$level" "$name" "whole run to 20 deg, M_y at the end (nN nm)" "${moment[$index]}"
   done
-done
-median() { sort -g | awk '{ value[NR] = $1 } END { print (NR % 2) ? value[(NR + 1) / 2] : (value[NR / 2] + value[NR / 2 + 1]) / 2 }'; }
-for index in "${!configurations[@]}"; do
-  IFS='|' read -r name build ranks threads <<< "${configurations[$index]}"
-  record medium "$name" "whole run to 20 deg, median wall s of $whole_runs" "$(cut -d' ' -f1 "$work/whole-$index.txt" | median)"
-  record medium "$name" "whole run to 20 deg, wall s of each run" "$(cut -d' ' -f1 "$work/whole-$index.txt" | paste -sd' ')"
-  record medium "$name" "whole run to 20 deg, median assembly s" "$(cut -d' ' -f2 "$work/whole-$index.txt" | median)"
-  record medium "$name" "whole run to 20 deg, median linear solver s" "$(cut -d' ' -f3 "$work/whole-$index.txt" | median)"
-  record medium "$name" "whole run to 20 deg, M_y at the end (nN nm)" "${moment[$index]}"
 done
 cp "$work/backends.csv" "$csv"
 echo "backends.sh: wrote $csv"
