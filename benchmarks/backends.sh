@@ -13,10 +13,9 @@
 # and whole runs on each of --whole-run-levels (default medium): the default scene (Q1C2 frictionless rotation) on that
 # mesh to 20 deg, wall seconds, --whole-runs times per configuration (default 3), the configurations taken in turn, and
 # the median recorded (single whole runs here vary by up to 32 % from one to the next). --whole-runs-only skips the
-# benchmarks. Kokkos' threads are KOKKOS_NUM_THREADS and
-# OMP_NUM_THREADS (equal, so that Kokkos does not warn of oversubscription); BLAS stays on one thread
-# (OPENBLAS_NUM_THREADS=1; Debian's MUMPS has no OpenMP). Writes docs/backends.csv (one row per level, configuration
-# and measurement; --csv another file) and prints it.
+# benchmarks. Kokkos' threads are KOKKOS_NUM_THREADS and OMP_NUM_THREADS (equal, so that Kokkos does not warn of
+# oversubscription); BLAS stays on one thread (OPENBLAS_NUM_THREADS=1; Debian's MUMPS has no OpenMP). Writes
+# docs/backends.csv (one row per level, configuration and measurement; --csv another file) and prints it.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 serial="$root/build" openmp="$root/build-openmp" levels="medium fine" repetitions=5 whole_runs=3
@@ -31,7 +30,7 @@ while [ $# -gt 0 ]; do
     --whole-run-levels) whole_levels=$2; shift 2 ;;
     --whole-runs-only) kernels=0; shift ;;
     --csv) csv=$(cd "$(dirname "$2")" && pwd)/$(basename "$2"); shift 2 ;;
-    -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,18p' "$0"; exit 0 ;;
     *) echo "backends.sh: unknown option '$1' (allowed: --serial-build DIR, --openmp-build DIR, --levels LIST, --repetitions N, --whole-runs N, --whole-run-levels LIST, --whole-runs-only, --csv FILE)" >&2; exit 2 ;;
   esac
 done
