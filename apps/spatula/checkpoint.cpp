@@ -76,12 +76,17 @@ std::string restart_label(const LoadingParameters& loading)
 
 void write_checkpoint(const std::string& file, const std::string& label, const discretization::DiscreteSystem& system,
                       const discretization::Vector& x, const analysis::LoadPoint& point, const PathStage& stage,
-                      const Scene& scene, const RunRecord& record, const discretization::Vector* anchors)
+                      const Scene& scene, const RunRecord& record, const discretization::Vector* anchors,
+                      const analysis::LoadPath::JumpInProgress* jump)
 {
   const auto displacements = system.space_displacements(x);   // collective
   const auto anchor_displacements = anchors ? system.space_displacements(*anchors) : std::vector<double>{};
-  std::vector<double> masters;
-  for (int m = 0; m < discretization::master_count; ++m) masters.push_back(system.master(x, discretization::Master(m)));
+  const auto jump_displacements = jump ? system.space_displacements(*jump->state) : std::vector<double>{};
+  std::vector<double> masters, jump_masters;
+  for (int m = 0; m < discretization::master_count; ++m) {
+    masters.push_back(system.master(x, discretization::Master(m)));
+    if (jump) jump_masters.push_back(system.master(*jump->state, discretization::Master(m)));
+  }
   if (system.owned_map()->getComm()->getRank() != 0) return;
   namespace fs = std::filesystem;
   const std::string writing = file + ".writing";
@@ -100,6 +105,12 @@ void write_checkpoint(const std::string& file, const std::string& label, const d
     out.write(group + "/displacements", displacements, 3);
     out.write(group + "/masters", masters);
     if (anchors) out.write(group + "/anchors", anchor_displacements, 3);
+    if (jump) {
+      out.write(group + "/jump displacements", jump_displacements, 3);
+      out.write(group + "/jump masters", jump_masters);
+      out.write(group + "/jump", std::vector<double>{static_cast<double>(jump->controlled), jump->value, jump->shift,
+                                                     jump->scale, static_cast<double>(jump->iterations)});
+    }
     out.write(group + "/history", history(point));
     out.write(group + "/stage", std::vector<double>{stage.lifting ? 1.0 : 0.0, stage.lift_start});
     out.write(group + "/signature", values(signature(system.nodes(), scene)));
@@ -149,6 +160,30 @@ RunRecord read_run_record(const Scene& scene)
   const auto r = in.read_doubles("/checkpoints/" + restart_label(scene.loading) + "/run");
   if (r.size() != 10) throw std::runtime_error(restart_key(scene) + ": the checkpoint has no run record");
   return {r[0], r[1], r[2], r[3], r[4], static_cast<int>(r[5]), analysis::StepControllerState{r[6], r[7], r[8] != 0.0, r[9] != 0.0}};
+}
+
+std::optional<analysis::LoadPath::JumpInProgress> read_jump_in_progress(const Scene& scene,
+                                                                       const discretization::DiscreteSystem& system)
+{
+  io::Hdf5File in(scene.loading.restart_file, io::Hdf5File::Mode::read);
+  const std::string group = "/checkpoints/" + restart_label(scene.loading);
+  if (!in.exists(group + "/jump")) return std::nullopt;
+  const auto j = in.read_doubles(group + "/jump");
+  const auto masters = in.read_doubles(group + "/jump masters");
+  if (j.size() != 5 || masters.size() != discretization::master_count)
+    throw parameters::InputError(restart_key(scene) + ": the jump stored with checkpoint '" +
+                                 restart_label(scene.loading) + "' is incomplete");
+  analysis::LoadPath::JumpInProgress jump;
+  jump.controlled = discretization::Master(static_cast<int>(j[0]));
+  jump.value = j[1];
+  jump.shift = j[2];
+  jump.scale = j[3];
+  jump.iterations = static_cast<int>(j[4]);
+  jump.state = system.create_vector();
+  system.set_space_displacements(*jump.state, in.read_doubles(group + "/jump displacements"));
+  for (int m = 0; m < discretization::master_count; ++m)
+    system.set_master(*jump.state, discretization::Master(m), masters[m]);
+  return jump;
 }
 
 void check_checkpoint(const Scene& scene, const discretization::NodeSpace& nodes)

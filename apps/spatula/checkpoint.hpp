@@ -8,10 +8,14 @@
 // began), under /checkpoints/<label>, with a signature (node and element counts, enrichment, geometry, material)
 // checked on restart. A run whose stiction anchors were set at its restart state ('Adhesion/stiction anchors' =
 // 'restart state') also stores that state's displacements (/anchors), so that a resumed run measures the travel
-// from the same anchors.
+// from the same anchors. A last state taken inside a jump past an instability (a periodic checkpoint during its
+// energy descent, a signal, or the descent's iteration limit) also stores the descent's state (/jump displacements,
+// /jump masters) and where it stands (/jump: master, value, shift, scale, iterations): a run resumed from it goes on
+// with the descent instead of starting the jump again.
 #include "analysis/load_stepping.hpp"
 #include "scene.hpp"
 
+#include <optional>
 #include <string>
 
 namespace spatula::app {
@@ -42,9 +46,14 @@ struct RunRecord {
 // Rank 0 writes (all ranks must call: the state is gathered). A label already in the file is kept, except the last
 // state, which is replaced. The file is replaced as a whole (written beside it, then renamed): a run killed while
 // writing leaves the checkpoints it had. `anchors`: the state the stiction anchors were set at, or nullptr.
+// `jump`: a jump under way from x (its energy descent's state, /jump and /jump displacements), or nullptr.
 void write_checkpoint(const std::string& file, const std::string& label, const discretization::DiscreteSystem& system,
                       const discretization::Vector& x, const analysis::LoadPoint& point, const PathStage& stage,
-                      const Scene& scene, const RunRecord& record, const discretization::Vector* anchors = nullptr);
+                      const Scene& scene, const RunRecord& record, const discretization::Vector* anchors = nullptr,
+                      const analysis::LoadPath::JumpInProgress* jump = nullptr);
+// The jump under way stored with the scene's restart checkpoint, if it holds one (all ranks read).
+std::optional<analysis::LoadPath::JumpInProgress> read_jump_in_progress(const Scene& scene,
+                                                                       const discretization::DiscreteSystem& system);
 
 // Whether `file` holds a complete 'last state' checkpoint with its run record (a run that can be resumed).
 bool resumable(const std::string& file);

@@ -59,12 +59,14 @@ void LoadingParameters::declare(Teuchos::ParameterList& loading)
                              Range::closed(-180.0, 180.0));
   parameters::declare_string(loading, "restart from", d.restart_from_last_state ? "last state" : "checkpoint",
                              "which state of the restart file: the checkpoint at 'restart theta_y', or the last "
-                             "converged state a stopped (interrupted or failed) run left",
+                             "converged state a stopped (interrupted or failed) run left (left inside a jump past an "
+                             "instability, it goes on with that jump's energy descent)",
                              {"checkpoint", "last state"});
   parameters::declare_string(loading, "checkpoints at theta_y", "",
                              "comma-separated inclinations [deg] where a rotation writes checkpoints (e.g. 45,60)");
   auto& jump = parameters::declare_sublist(loading, "Jump", "energy descent past an instability");
-  parameters::declare_int(jump, "maximum iterations", d.jump.maximum_iterations, "iterations per jump",
+  parameters::declare_int(jump, "maximum iterations", d.jump.maximum_iterations,
+                          "iterations per jump (one restarted inside its descent counts those before the stop)",
                           Range::closed(1, 100000));
   parameters::declare_string(jump, "refactor",
                              parameters::name_of(d.jump.refactor, analysis::JumpParameters::refactor_names()),

@@ -21,7 +21,8 @@ void OutputParameters::declare(Teuchos::ParameterList& output)
                            "print the Newton iterations of every step");
   parameters::declare_double(output, "checkpoint interval", d.checkpoint_minutes,
                              "wall-clock minutes between checkpoints of the last converged state (checkpoints.h5, "
-                             "'last state'), from which 'spatula scene.xml --resume' goes on after the run was killed "
+                             "'last state', with the state of a jump's energy descent under way), from which "
+                             "'spatula scene.xml --resume' goes on after the run was killed "
                              "(0: only when the run stops on a signal or a failure)",
                              parameters::Range::closed(0.0, 1e6));
 }

@@ -111,6 +111,7 @@ private:
   static constexpr double balance_limit = 2e-3;   // |Pi_ext - Pi_int - Pi_sa - D| / Pi_c0, the paper's bound
 
   void on_point(const analysis::LoadPoint& p, const Vector& x);
+  void on_descent();
   void print_step(const analysis::LoadPoint& p);
   void checkpoint_if_due(const analysis::LoadPoint& p, const Vector& x);
   void write_fields(const Vector& x, double time);
@@ -201,6 +202,7 @@ Run::Run(const Scene& scene, const geometry::SpatulaShape& shape, const mesh::He
   jump.step_balance_tolerance = contact ? scene.loading.step_balance_tolerance * reference_energy_ / 2.0 : 0.0;
   path_.set_jump_parameters(jump);
   if (contact) path_.set_detachment_test([this](const analysis::LoadPoint& p) { return detached(p); });
+  path_.set_descent_watch([this] { on_descent(); });
 }
 
 // Detachment ends a path cleanly: the moment (rotation) or the pull (lift) has collapsed to under 1 % of its peak
@@ -232,8 +234,11 @@ RunRecord Run::record_at(const analysis::LoadPoint& p) const
 
 void Run::write_last_state(const Vector& x, const analysis::LoadPoint& p)
 {
-  write_checkpoint(checkpoint_file(), last_state_label, *system_, x, p, path_stage_, scene_, record_at(p),
-                   anchors_.get());
+  auto record = record_at(p);
+  const auto* jump = path_.jump_in_progress();
+  if (jump) record.seconds = path_.elapsed_seconds();   // the descent's time so far counts too
+  write_checkpoint(checkpoint_file(), last_state_label, *system_, x, p, path_stage_, scene_, record, anchors_.get(),
+                   jump);
 }
 
 void Run::write_checkpoint_at(double theta_y)
@@ -279,7 +284,11 @@ void Run::checkpoint_if_due(const analysis::LoadPoint& p, const Vector& x)
   if (!due) return;
   write_last_state(x, p);
   last_checkpoint_ = clock::now();
-  if (root_) out_ << "checkpoint '" << last_state_label << "' written at step " << p.step << std::endl;
+  if (!root_) return;
+  out_ << "checkpoint '" << last_state_label << "' written at step " << p.step;
+  if (const auto* jump = path_.jump_in_progress())
+    out_ << ", with the jump's energy descent at iteration " << jump->iterations;
+  out_ << std::endl;
 }
 
 void Run::on_point(const analysis::LoadPoint& p, const Vector& x)
@@ -292,6 +301,14 @@ void Run::on_point(const analysis::LoadPoint& p, const Vector& x)
   if (interval > 0 && p.step % interval == 0) write_fields(x, load_of(p));
   checkpoint_if_due(p, x);
   stop_if_interrupted(*comm_);   // a signal stops the run here, at a converged state, on every rank
+}
+
+// After every iteration of a jump's energy descent that moved the state: the descent (an hour on the paper's mesh)
+// is checkpointed with the last converged state, and a signal stops it, as after a converged step.
+void Run::on_descent()
+{
+  checkpoint_if_due(path_.last(), path_.state());
+  stop_if_interrupted(*comm_);
 }
 
 std::optional<Stop> Run::press_onto_rough_substrate()
@@ -356,6 +373,13 @@ void Run::start()
       out_ << "restart from '" << restart_label(loading) << "' of " << loading.restart_file << " (step "
            << history.step << ", u_z " << history.lift << " nm" << (path_stage_.lifting ? ", in the lift" : "") << ")"
            << (anchor ? "; stiction anchors set at this state" : "") << "\n";
+    if (auto jump = read_jump_in_progress(scene_, *system_)) {
+      if (root_)
+        out_ << "  it was inside a jump past an instability (" << stage_name(jump->controlled) << " = "
+             << (jump->controlled == Master::rotation ? (theta_s_ + jump->value) / degree : jump->value)
+             << ", energy descent at iteration " << jump->iterations << "): the jump goes on from there\n";
+      path_.resume_jump(std::move(*jump));
+    }
   }
   if (root_)
     curve_ = std::make_unique<CurveWriter>(directory_->file("curve.csv"), young_, reference_energy_,
@@ -439,6 +463,9 @@ std::optional<Stop> Run::finish(std::optional<analysis::Failure> failure, int in
   Stop stop;
   stop.signal = interrupted_by;
   stop.stage = stage_;
+  if (failure && path_.jump_in_progress())   // a descent stopped at its iteration limit
+    failure->reason += "; the descent's state is checkpointed with the last state: a restart from it ('Loading/restart "
+                       "from' = 'last state') with a larger 'Loading/Jump/maximum iterations' goes on from there";
   if (failure) stop.failure = *failure;
   else stop.failure = analysis::Failure{last.step, load_of(last), 0.0, Interrupted(interrupted_by).what()};
   write_last_state(path_.state(), last);   // collective

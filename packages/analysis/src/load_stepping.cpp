@@ -207,6 +207,15 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
     stepping.failed.restore(*resumed_control_);
     resumed_control_.reset();
   }
+  if (resumed_jump_ && resumed_jump_->controlled == controlled &&
+      direction * (target - resumed_jump_->value) >= -1e-12 * std::max(1.0, std::abs(target))) {
+    // A checkpointed jump first: it began at this state, within this advance
+    if (auto failure = finish_resumed_jump(controlled, unit, on_point)) return failure;
+    system.set_control(control);
+    stepping.value = system.master(*x_, controlled);
+    stepping.failed.forget();
+    stepping.increment = steps.initial * unit;
+  }
   auto trial = system.create_vector();
   while (!detached_ && direction * (target - stepping.value) > 1e-12 * std::max(1.0, std::abs(target))) {
     stepping.increment =
@@ -229,6 +238,19 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
     take_converged_step(stepping, *trial, point, iterations, table.str(), on_point);
   }
   return std::nullopt;
+}
+
+std::optional<Failure> LoadPath::finish_resumed_jump(Master controlled, double unit, const Callback& on_point)
+{
+  const auto jump_state = std::move(*resumed_jump_);
+  resumed_jump_.reset();
+  if (log_)
+    *log_ << "  " << load_name(controlled) << " = " << load_text(jump_state.value / unit)
+          << ": going on with the jump's energy descent from its checkpoint (iteration " << jump_state.iterations
+          << ")" << std::endl;
+  auto failure = jump(controlled, jump_state.value, on_point, &jump_state);
+  if (failure) failure->load = jump_state.value / unit;   // in the load's unit, as every other failure
+  return failure;
 }
 
 std::optional<Failure> LoadPath::after_failed_attempt(Stepping& stepping, double load, Vector& trial,
@@ -470,6 +492,8 @@ std::optional<Failure> LoadPath::equilibrate(const Vector& guess, discretization
   return std::nullopt;
 }
 
+double LoadPath::elapsed_seconds() const { return now() - started_; }
+
 void LoadPath::restart(const Vector& x, const LoadPoint& point, bool resume_step_control)
 {
   x_->assign(x);
@@ -692,13 +716,25 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
     d.unshifted_tried = false;
     x.update(best_step, *direction, 1.0);
     after_descent_step(d, fresh, best_step, point.energy - best_energy, iteration_began);
+    if (jump_in_progress_) {   // a jump's descent: its state so far, for a checkpoint of it
+      jump_in_progress_->state->assign(x);
+      jump_in_progress_->shift = d.eta;
+      jump_in_progress_->scale = d.scale;
+      jump_in_progress_->iterations = d.iteration + 1;
+      if (descent_watch_) descent_watch_();
+    }
   }
   return std::nullopt;
 }
 
-std::variant<int, std::string> LoadPath::descend(Vector& x)
+std::variant<int, std::string> LoadPath::descend(Vector& x, const JumpInProgress* resumed)
 {
   Descent d;
+  if (resumed) {
+    d.eta = resumed->shift;
+    d.scale = resumed->scale;
+    d.iteration = resumed->iterations;
+  }
   auto start = model_.system().create_vector();
   start->assign(x);
   d.table << std::scientific << std::setprecision(2);
@@ -710,10 +746,17 @@ std::variant<int, std::string> LoadPath::descend(Vector& x)
   double small_gradient = 1e-3;   // |f| [nN]
   auto confirmed = model_.system().create_vector();
   for (int confirmations = 1;; ++confirmations) {
-    if (auto error = descend_to_small_gradient(x, d, small_gradient)) return *error;
+    if (auto error = descend_to_small_gradient(x, d, small_gradient)) {
+      jump_in_progress_.reset();   // no state worth going on from
+      return *error;
+    }
     if (log_ && tables_) *log_ << d.table.str();
     d.table.str("");
     if (d.iteration >= jump_.maximum_iterations) {
+      if (jump_in_progress_) {   // kept (with the last state of the path): more iterations can go on from here
+        jump_in_progress_->shift = d.eta;
+        jump_in_progress_->iterations = d.iteration;
+      }
       start->update(1.0, x, -1.0);
       std::ostringstream reason;
       reason << "no stable state within " << jump_.maximum_iterations << " iterations (" << d.accepted
@@ -728,8 +771,10 @@ std::variant<int, std::string> LoadPath::descend(Vector& x)
       x.assign(*confirmed);
       return d.iteration + (plain.iterations.empty() ? 0 : plain.iterations.back().iteration);
     }
-    if (confirmations == 3)
+    if (confirmations == 3) {
+      jump_in_progress_.reset();
       return "Newton did not confirm the state the energy descent reached (" + plain.failure + ")";
+    }
     small_gradient = 1e-3 * std::min(small_gradient, d.residual);
     if (tables_) d.table << "  descent  (Newton did not confirm: " << plain.failure << "; descending further)\n";
   }
@@ -737,13 +782,27 @@ std::variant<int, std::string> LoadPath::descend(Vector& x)
 
 std::optional<Failure> LoadPath::jump(Master controlled, double value, const Callback& on_point)
 {
+  return jump(controlled, value, on_point, nullptr);
+}
+
+std::optional<Failure> LoadPath::jump(Master controlled, double value, const Callback& on_point,
+                                      const JumpInProgress* resumed)
+{
   Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: jump past instability"));
   auto& system = model_.system();
   const auto before = points_.back();
   auto x = system.create_vector();
-  x->assign(*x_);
-  system.set_master(*x, controlled, value);
-  const auto outcome = descend(*x);
+  if (resumed) {
+    x->assign(*resumed->state);
+  } else {
+    x->assign(*x_);
+    system.set_master(*x, controlled, value);
+  }
+  jump_in_progress_ = resumed ? *resumed : JumpInProgress{controlled, value, Teuchos::null, 0.0, 0.0, 0};
+  jump_in_progress_->state = system.create_vector();   // its own copy, updated as the descent goes
+  jump_in_progress_->state->assign(*x);
+  const auto outcome = descend(*x, resumed);
+  if (std::holds_alternative<int>(outcome)) jump_in_progress_.reset();   // done: the path goes on from its state
   if (const auto* reason = std::get_if<std::string>(&outcome)) {
     // How far the descent got: the share of the adhesion energy its last state still holds.
     const auto last = system.evaluate(*x, nullptr, false);

@@ -176,6 +176,7 @@ public:
   Vector& state() { return *x_; }
   const LoadPoint& last() const { return points_.back(); }
   const std::vector<LoadPoint>& points() const { return points_; }
+  double elapsed_seconds() const;   // wall time since the run began (a resumed run's included)
 
   // Moves `controlled` from its current value to `target`; `control` says which masters are prescribed (the
   // controlled one always is; the others keep their values). Calls `on_point` after every converged step.
@@ -206,6 +207,27 @@ public:
   }
   // Jumps at fixed `controlled` = value from the current state to a stable equilibrium (see JumpParameters).
   std::optional<Failure> jump(Master controlled, double value, const Callback& on_point);
+
+  // A jump whose energy descent is under way: where it jumps (the controlled master held at `value`, in internal
+  // units), the descent's state, its tangent shift eta with the mean diagonal it is measured against, and its
+  // iterations so far. A descent can take an hour on the paper's mesh; a checkpoint of it lets a stopped run go on
+  // inside the jump.
+  struct JumpInProgress {
+    Master controlled = Master::rotation;
+    double value = 0.0;
+    Teuchos::RCP<Vector> state;
+    double shift = 0.0, scale = 0.0;
+    int iterations = 0;
+  };
+  // While a jump's descent runs, and after a jump that stopped at its iteration limit or was interrupted (a
+  // signal thrown from the watch); null otherwise.
+  const JumpInProgress* jump_in_progress() const { return jump_in_progress_ ? &*jump_in_progress_ : nullptr; }
+  // Called on every rank after every descent iteration of a jump that moved the state (collective callers welcome:
+  // every rank runs the same iterations). It may throw to stop the run; jump_in_progress() then still holds the jump.
+  void set_descent_watch(std::function<void()> watch) { descent_watch_ = std::move(watch); }
+  // Goes on with a checkpointed jump: the next advance in its master first finishes it from its descent's state,
+  // shift and iteration count (call after restart(), from the state the jump started from).
+  void resume_jump(JumpInProgress jump) { resumed_jump_ = std::move(jump); }
   // The detachment test that ends a path cleanly.
   void set_detachment_test(std::function<bool(const LoadPoint&)> test) { detachment_test_ = std::move(test); }
   bool detached() const { return detached_; }
@@ -263,7 +285,8 @@ private:
   // The energy descent of a jump (LoadPath's comment above): iterations down to a small gradient, each with a line
   // search on Pi, then plain Newton to confirm; the iterations it took, or why it found no stable state.
   struct Descent;
-  std::variant<int, std::string> descend(Vector& x);
+  // `resumed`: go on with a checkpointed descent (x is its state) from its shift and iteration count.
+  std::variant<int, std::string> descend(Vector& x, const JumpInProgress* resumed = nullptr);
   std::optional<std::string> descend_to_small_gradient(Vector& x, Descent& descent, double small_gradient);
   // One descent iteration's state at x: residual f, Pi, |f| and, with fresh factors (the tangent shifted by the
   // descent's eta, factored), the negative pivots of their inertia.
@@ -297,6 +320,12 @@ private:
   std::unique_ptr<solvers::MumpsSolver> descent_solver_;   // LDL^T of the descents: one analysis for the whole path
   std::function<bool(const LoadPoint&)> detachment_test_;
   bool detached_ = false;
+  std::optional<JumpInProgress> jump_in_progress_, resumed_jump_;
+  std::function<void()> descent_watch_;
+  // The jump's descent from a checkpoint of it, if resumed_jump_ is in this master (the first thing an advance does).
+  std::optional<Failure> finish_resumed_jump(Master controlled, double unit, const Callback& on_point);
+  std::optional<Failure> jump(Master controlled, double value, const Callback& on_point,
+                              const JumpInProgress* resumed);
   EarlyDescents early_descents_;
 };
 

@@ -115,7 +115,12 @@ struct BarPath {
     const auto partition = mesh::partition_mesh(mesh, comm->getSize());
     system = Teuchos::rcp(new discretization::DiscreteSystem(
         mesh, partition, constraints, solid, comm, {adhesion.enrichment, contact::make_contact_model(adhesion)}));
-    linear = std::make_unique<solvers::LinearSolverFactory>(solvers::LinearSolverParameters{});
+    // Refactoring by count (lag), not by measured time (cost, the default): the path must not depend on the load
+    // of the machine. (With cost, once, beside a long run, Newton converged across the snap within the smallest
+    // step, and there was no descent to count.)
+    solvers::LinearSolverParameters linear_parameters;
+    linear_parameters.refactor = solvers::RefactorRule::lag;
+    linear = std::make_unique<solvers::LinearSolverFactory>(linear_parameters);
     model = Teuchos::rcp(new solvers::SpatulaModel(system, linear->lows_factory()));
     newton = std::make_unique<solvers::NewtonSolver>(model, newton_parameters, *linear);
     path = std::make_unique<analysis::LoadPath>(*model, *newton, nullptr, false);
