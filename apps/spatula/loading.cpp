@@ -59,8 +59,8 @@ void LoadingParameters::declare(Teuchos::ParameterList& loading)
                              Range::closed(-180.0, 180.0));
   parameters::declare_string(loading, "restart from", d.restart_from_last_state ? "last state" : "checkpoint",
                              "which state of the restart file: the checkpoint at 'restart theta_y', or the last "
-                             "converged state a stopped (interrupted or failed) run left (left inside a jump past an "
-                             "instability, it goes on with that jump's energy descent)",
+                             "converged state a stopped (interrupted or failed) run left (if it stopped inside a jump past "
+                             "an instability, the restart goes on with that jump's energy descent)",
                              {"checkpoint", "last state"});
   parameters::declare_string(loading, "checkpoints at theta_y", "",
                              "comma-separated inclinations [deg] where a rotation writes checkpoints (e.g. 45,60)");

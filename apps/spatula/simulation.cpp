@@ -377,7 +377,7 @@ void Run::start()
       if (root_)
         out_ << "  it was inside a jump past an instability (" << stage_name(jump->controlled) << " = "
              << (jump->controlled == Master::rotation ? (theta_s_ + jump->value) / degree : jump->value)
-             << ", energy descent at iteration " << jump->iterations << "): the jump goes on from there\n";
+             << ", energy descent at iteration " << jump->iterations << ")\n";
       path_.resume_jump(std::move(*jump));
     }
   }

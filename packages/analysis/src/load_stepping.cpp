@@ -207,14 +207,21 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
     stepping.failed.restore(*resumed_control_);
     resumed_control_.reset();
   }
-  if (resumed_jump_ && resumed_jump_->controlled == controlled &&
-      direction * (target - resumed_jump_->value) >= -1e-12 * std::max(1.0, std::abs(target))) {
-    // A checkpointed jump first: it began at this state, within this advance
-    if (auto failure = finish_resumed_jump(controlled, unit, on_point)) return failure;
-    system.set_control(control);
-    stepping.value = system.master(*x_, controlled);
-    stepping.failed.forget();
-    stepping.increment = steps.initial * unit;
+  if (resumed_jump_) {   // a checkpointed jump first: it began at this state
+    const bool here = resumed_jump_->controlled == controlled && past_folds_ == PastFolds::jump &&
+                      direction * (target - resumed_jump_->value) >= -1e-12 * std::max(1.0, std::abs(target));
+    if (here) {
+      if (auto failure = finish_resumed_jump(controlled, unit, on_point)) return failure;
+      system.set_control(control);
+      stepping.value = system.master(*x_, controlled);
+      stepping.failed.forget();
+      stepping.increment = steps.initial * unit;
+    } else {   // another load path from this state (another master, target or way past folds): it starts afresh
+      if (log_)
+        *log_ << "  the checkpoint's jump is not on this load path (another load, a target short of it, or "
+              << "instabilities not passed by jumps): dropped; the path starts from the last converged state\n";
+      resumed_jump_.reset();
+    }
   }
   auto trial = system.create_vector();
   while (!detached_ && direction * (target - stepping.value) > 1e-12 * std::max(1.0, std::abs(target))) {
@@ -500,6 +507,8 @@ void LoadPath::restart(const Vector& x, const LoadPoint& point, bool resume_step
   previous_->assign(x);
   previous_increment_ = older_increment_ = 0.0;
   points_.clear();
+  jump_in_progress_.reset();   // (resume_jump() after this sets the one to go on with)
+  resumed_jump_.reset();
   step_offset_ = point.step;
   if (resume_step_control) resumed_control_ = point.step_control;
   else resumed_control_.reset();
@@ -652,7 +661,9 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
   auto& system = model_.system();
   auto f = system.create_vector(), direction = system.create_vector(), trial = system.create_vector();
   d.cycle_began = now();   // a cycle is not charged with the confirming Newton between two calls
-  for (; d.iteration < jump_.maximum_iterations; ++d.iteration) {
+  // After every iteration, accepted or not (an indefinite try costs a factorization: a minute on the paper's mesh),
+  // a jump's descent is offered to the watch (checkpoint, signal).
+  for (; d.iteration < jump_.maximum_iterations; watch_descent(d), ++d.iteration) {
     const double iteration_began = now();
     // Kept factors (of a positive definite shifted tangent at an earlier state) still give a descent direction
     // -M^-1 f; the iteration then needs only f and Pi. Otherwise the tangent at x is assembled and factored.
@@ -716,15 +727,18 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
     d.unshifted_tried = false;
     x.update(best_step, *direction, 1.0);
     after_descent_step(d, fresh, best_step, point.energy - best_energy, iteration_began);
-    if (jump_in_progress_) {   // a jump's descent: its state so far, for a checkpoint of it
-      jump_in_progress_->state->assign(x);
-      jump_in_progress_->shift = d.eta;
-      jump_in_progress_->scale = d.scale;
-      jump_in_progress_->iterations = d.iteration + 1;
-      if (descent_watch_) descent_watch_();
-    }
+    if (jump_in_progress_) jump_in_progress_->state->assign(x);   // the jump's descent state so far
   }
   return std::nullopt;
+}
+
+void LoadPath::watch_descent(const Descent& d)
+{
+  if (!jump_in_progress_) return;   // only a jump's descent is checkpointed
+  jump_in_progress_->shift = d.eta;
+  jump_in_progress_->scale = d.scale;
+  jump_in_progress_->iterations = d.iteration + 1;
+  if (descent_watch_) descent_watch_();
 }
 
 std::variant<int, std::string> LoadPath::descend(Vector& x, const JumpInProgress* resumed)

@@ -222,11 +222,12 @@ public:
   // While a jump's descent runs, and after a jump that stopped at its iteration limit or was interrupted (a
   // signal thrown from the watch); null otherwise.
   const JumpInProgress* jump_in_progress() const { return jump_in_progress_ ? &*jump_in_progress_ : nullptr; }
-  // Called on every rank after every descent iteration of a jump that moved the state (collective callers welcome:
-  // every rank runs the same iterations). It may throw to stop the run; jump_in_progress() then still holds the jump.
+  // Called on every rank after every descent iteration of a jump (collective callers welcome: every rank runs the
+  // same iterations). It may throw to stop the run; jump_in_progress() then still holds the jump.
   void set_descent_watch(std::function<void()> watch) { descent_watch_ = std::move(watch); }
-  // Goes on with a checkpointed jump: the next advance in its master first finishes it from its descent's state,
-  // shift and iteration count (call after restart(), from the state the jump started from).
+  // Goes on with a checkpointed jump: the next advance first finishes it from its descent's state, shift and
+  // iteration count (call after restart(), from the state the jump started from), if that advance is in the jump's
+  // master, reaches its value and jumps past folds; otherwise the jump is dropped (logged) and the path starts afresh.
   void resume_jump(JumpInProgress jump) { resumed_jump_ = std::move(jump); }
   // The detachment test that ends a path cleanly.
   void set_detachment_test(std::function<bool(const LoadPoint&)> test) { detachment_test_ = std::move(test); }
@@ -288,6 +289,8 @@ private:
   // `resumed`: go on with a checkpointed descent (x is its state) from its shift and iteration count.
   std::variant<int, std::string> descend(Vector& x, const JumpInProgress* resumed = nullptr);
   std::optional<std::string> descend_to_small_gradient(Vector& x, Descent& descent, double small_gradient);
+  // After a descent iteration of a jump: its shift and count into jump_in_progress_, then the descent watch.
+  void watch_descent(const Descent& descent);
   // One descent iteration's state at x: residual f, Pi, |f| and, with fresh factors (the tangent shifted by the
   // descent's eta, factored), the negative pivots of their inertia.
   struct DescentPoint {
