@@ -33,7 +33,7 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula'))
 sys.path.insert(0, os.path.join(ROOT, 'scripts'))
-from curves import interpolate, pull_off_summary, read_curve  # noqa: E402
+from curves import RECORDED_BENCHMARK_START, interpolate, pull_off_summary, read_curve  # noqa: E402
 from scenes import app_diagnosis, benchmark_scene  # noqa: E402
 
 # The base every option is compared with. It keeps lag 0 (the app's default when the sets were measured; the app's
@@ -123,7 +123,7 @@ def measure(work, c):
     row['rotation_s'] = round(rotation[-1]['wall_s'], 1)
     row['lift_s'] = round(rows[-1]['wall_s'] - rotation[-1]['wall_s'], 1)
     row['newton_iterations'] = int(sum(r['newton_iterations'] for r in rows))
-    summary = pull_off_summary(work, directory)
+    summary = pull_off_summary(work, directory, count_from=RECORDED_BENCHMARK_START)
     for q in QUANTITIES:
         row[q] = summary[SUMMARY_KEY.get(q, q)]
     for angle in MOMENT_ANGLES:
@@ -141,7 +141,7 @@ def from_study(directory):
                lift_s=round(lift[-1]['wall_s'], 1))
     row['wall_s'] = row['cpu_s'] = round(row['rotation_s'] + row['lift_s'], 1)
     row['newton_iterations'] = int(sum(r['newton_iterations'] for r in rotation + lift))
-    summary = pull_off_summary(directory, 'pull-off-60')
+    summary = pull_off_summary(directory, 'pull-off-60', count_from=RECORDED_BENCHMARK_START)
     for q in QUANTITIES:
         row[q] = summary[SUMMARY_KEY.get(q, q)]
     for angle in MOMENT_ANGLES:

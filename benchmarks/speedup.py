@@ -58,7 +58,7 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, 'scripts'))
 sys.path.insert(0, os.path.join(ROOT, 'benchmarks'))
-from curves import pull_off_summary  # noqa: E402
+from curves import RECORDED_BENCHMARK_START, pull_off_summary  # noqa: E402
 from scenes import benchmark_scene  # noqa: E402
 import peer_iteration  # noqa: E402
 
@@ -121,7 +121,7 @@ def pull_off(work, label, options):
         sys.exit(f'{directory}: exit {status} (see {directory}.log)')
     text = open(os.path.join(work, directory + '.log')).read()
     solver = re.search(r'^solver: (\d+) tangents', text, re.M)
-    summary = pull_off_summary(work, directory)
+    summary = pull_off_summary(work, directory, count_from=RECORDED_BENCHMARK_START)
     result = dict(cpu_s=after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime,
                   wall_s=time.time() - started, tangents=int(solver.group(1)),
                   failed=len(re.findall(r'failed \(|converged on another branch', text)),
@@ -196,7 +196,8 @@ def table6_half(work, label, settings, level):
             wall, start = wall + float(stamp) - start, None
     tangents = {os.path.basename(l)[:-4]: sum(int(t) for t in re.findall(r'^solver: (\d+) tangents', open(l).read(),
                                                                          re.M)) for l in logs}
-    results = {angle: pull_off_summary(runs, f'pull-off-{angle}') for angle in TABLE6_ANGLES}
+    results = {angle: pull_off_summary(runs, f'pull-off-{angle}', count_from=RECORDED_BENCHMARK_START)
+               for angle in TABLE6_ANGLES}
     print(f"medium-table6-study, {label}: {wall:.0f} s wall, {sum(tangents.values())} tangents, P_max "
           + ' / '.join(f"{results[a]['P_max_nN']:.3f}" for a in TABLE6_ANGLES) + ' nN', flush=True)
     return dict(wall_s=wall, tangents=sum(tangents.values()), rotation_tangents=tangents['peel-rotation'],
@@ -265,7 +266,7 @@ def fine_pull_off_60(work):
             sys.exit(f'{FINE_60}: exit {status} (see {log_path})')
         logs.append(os.path.basename(log_path))
     seconds = [segment_seconds(os.path.join(work, f)) for f in logs]
-    summary = pull_off_summary(work, FINE_60)
+    summary = pull_off_summary(work, FINE_60, count_from=RECORDED_BENCHMARK_START)
     solver = re.search(r'^solver: (\d+) tangents', open(os.path.join(work, logs[-1])).read(), re.M)
     print(f'{FINE_60}: {sum(seconds):.0f} s in {len(seconds)} segment(s), P_max {summary["P_max_nN"]:.4f} nN',
           flush=True)

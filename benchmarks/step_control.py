@@ -63,7 +63,7 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, 'scripts'))
-from curves import pull_off_summary  # noqa: E402
+from curves import RECORDED_BENCHMARK_START, pull_off_summary  # noqa: E402
 from scenes import benchmark_scene  # noqa: E402
 
 APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula'))
@@ -136,7 +136,7 @@ def measure(work, label, newton, mesh, theta):
     row['failed_attempts'] = len(re.findall(r'failed \(|converged on another branch', text))
     row['jumps'] = len(re.findall(r'^  jumped in', text, re.M))
     if status == 0:
-        summary = pull_off_summary(work, directory)
+        summary = pull_off_summary(work, directory, count_from=RECORDED_BENCHMARK_START)
         for q in QUANTITIES:
             row[q] = summary[q]
         row['worst_balance'] = summary['worst_balance_error']

@@ -19,9 +19,18 @@ def interpolate(rows, key, at, columns):
     return None
 
 
-def pull_off_summary(work, scene):
-    """Table 6's quantities of a pull-off: the peak pull, the lift and the work from its start to detachment, and
-    the energies of the last state before detachment (Table 5).
+# Where Delta u_z and Delta Pi_ext count from: the lift's start (the rotation's last state, the row before the first
+# lift row), or the first lift row (the state after the first lift step, 1-2 nm later). The study tables use the
+# lift's start; the recorded benchmark tables (docs/error-vs-time.csv, checked by CI, docs/mesh-choice.csv behind
+# Mesh/level = auto, and the speedup and step-control tables of docs/performance.md) were measured from the first
+# lift row, and their scripts keep that start until those tables are run again.
+LIFT_START, FIRST_LIFT_ROW = 'lift start', 'first lift row'
+RECORDED_BENCHMARK_START = FIRST_LIFT_ROW
+
+
+def pull_off_summary(work, scene, count_from=LIFT_START):
+    """Table 6's quantities of a pull-off: the peak pull, the lift and the work from its start (`count_from`, above)
+    to detachment, and the energies of the last state before detachment (Table 5).
 
     Detachment as the paper counts it (its Fig. 8 and Table 5): the state before the *main snap*, the jump that drops
     the pull the most. After it a small patch of the pad can stay attached for a while (the tail) until the *final
@@ -32,7 +41,8 @@ def pull_off_summary(work, scene):
     lift = [r for r in rows if r['stage'] == 'lift']
     if not lift:   # the run stopped before its lift began
         return {'rows': [], 'worst_balance_error': max(r['balance_error_per_Pi_c0'] for r in rows)}
-    start = lift[0]
+    first = next(i for i, r in enumerate(rows) if r['stage'] == 'lift')
+    start = rows[first - 1] if count_from == LIFT_START and first > 0 else lift[0]
     peak = max(lift, key=lambda r: r['P_z_nN'])
     detach = next((r for r in lift if r['u_z_nm'] > peak['u_z_nm'] and r['P_z_nN'] < 0.01 * peak['P_z_nN']), lift[-1])
     final = lift.index(detach)
@@ -61,7 +71,7 @@ def pull_off_summary(work, scene):
         'Pi_sa_at_lift_start': start['Pi_sa_per_Pi_c0'],
         'jumps_in_rotation': sum(1 for r in rows if r['stage'] == 'rotation' and r['after_jump']),
         'jumps_in_lift': sum(1 for r in lift[1:] if r['after_jump']),
-        'detached': detach['P_z_nN'] < 0.01 * peak['P_z_nN'], 'rows': lift,
+        'detached': detach['P_z_nN'] < 0.01 * peak['P_z_nN'], 'rows': lift, 'start': start,
     }
 
 

@@ -675,7 +675,7 @@ def write_tables(work, scenes, level):
             slip = pad_slip(work, scene, s['u_z_at_P_max'])
             slip_text = (f'{slip[1]:.1f} nm ({slip[2]} nodes, state at u_z = {slip[0]:.0f} nm)' if slip else '')
             peak = max(s['rows'], key=lambda r: r['P_z_nN'])
-            travel = (f'{peak["u_x_nm"] - s["rows"][0]["u_x_nm"]:.1f} nm' if 'u_x_nm' in peak
+            travel = (f'{peak["u_x_nm"] - s["start"]["u_x_nm"]:.1f} nm' if 'u_x_nm' in peak
                       else 'not recorded' if free_in_x else '0 (held)')
             markdown.append(f'| {name} | {s["P_max_nN"]:.2f} | {s["delta_u_z_nm"]:.0f} | {s["delta_Pi_ext_1e-18J"]:.0f} '
                             f'| {slip_text} | {travel} | {s["outcome"]} |')
