@@ -31,7 +31,7 @@ from concurrent.futures import ThreadPoolExecutor
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, 'scripts'))
-from curves import RECORDED_BENCHMARK_START, pull_off_summary  # noqa: E402
+from curves import pull_off_summary  # noqa: E402
 from scenes import benchmark_scene  # noqa: E402
 
 APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula'))
@@ -86,7 +86,7 @@ def mesh_of(directory, run_name):
 
 
 def row(name, label, mesh, directory, run_name, reference):
-    values = pull_off_summary(directory, run_name, count_from=RECORDED_BENCHMARK_START)
+    values = pull_off_summary(directory, run_name)
     errors = {q: 100.0 * (values[q] / reference[q] - 1.0) for q in QUANTITIES}
     wall = [r for r in csv.DictReader(open(os.path.join(directory, run_name, 'curve.csv')))][-1]['wall_s']
     return dict(candidate=name, label=label, level=mesh['mesh'], refinement_factor=mesh.get('refinement', 1),
@@ -109,7 +109,7 @@ def main():
     os.makedirs(work, exist_ok=True)
     with ThreadPoolExecutor(max_workers=arguments.jobs) as pool:   # the dearest first: they share the cores better
         done = dict(zip(reversed(arguments.only), pool.map(lambda n: run(work, n), reversed(arguments.only))))
-    reference = pull_off_summary(*REFERENCE, count_from=RECORDED_BENCHMARK_START)
+    reference = pull_off_summary(*REFERENCE)
     rows = [row(n, label, mesh, directory, run_name, reference) for n, (label, mesh, directory, run_name) in KEPT.items()]
     ran = [n for n in arguments.only if done[n]]
     if arguments.docs:   # kept beside the other variants, so that the table can be checked and redone from them
