@@ -55,6 +55,21 @@ std::vector<double> history(const analysis::LoadPoint& p)
   return {static_cast<double>(p.step), p.rotation, p.lift, p.slide, p.external_work, p.dissipated};
 }
 
+// The end-face masters of state x (written beside its displacements), and x set back from both.
+std::vector<double> masters_of(const discretization::DiscreteSystem& system, const discretization::Vector& x)
+{
+  std::vector<double> masters;
+  for (int m = 0; m < discretization::master_count; ++m) masters.push_back(system.master(x, discretization::Master(m)));
+  return masters;
+}
+
+void set_state(const discretization::DiscreteSystem& system, const std::vector<double>& displacements,
+               const std::vector<double>& masters, discretization::Vector& x)
+{
+  system.set_space_displacements(x, displacements);
+  for (int m = 0; m < discretization::master_count; ++m) system.set_master(x, discretization::Master(m), masters[m]);
+}
+
 std::string restart_key(const Scene& scene)
 {
   return "parameter 'Loading/restart file' = '" + scene.loading.restart_file + "'";
@@ -82,11 +97,8 @@ void write_checkpoint(const std::string& file, const std::string& label, const d
   const auto displacements = system.space_displacements(x);   // collective
   const auto anchor_displacements = anchors ? system.space_displacements(*anchors) : std::vector<double>{};
   const auto jump_displacements = jump ? system.space_displacements(*jump->state) : std::vector<double>{};
-  std::vector<double> masters, jump_masters;
-  for (int m = 0; m < discretization::master_count; ++m) {
-    masters.push_back(system.master(x, discretization::Master(m)));
-    if (jump) jump_masters.push_back(system.master(*jump->state, discretization::Master(m)));
-  }
+  const auto masters = masters_of(system, x);
+  const auto jump_masters = jump ? masters_of(system, *jump->state) : std::vector<double>{};
   if (system.owned_map()->getComm()->getRank() != 0) return;
   namespace fs = std::filesystem;
   const std::string writing = file + ".writing";
@@ -180,9 +192,7 @@ std::optional<analysis::LoadPath::JumpInProgress> read_jump_in_progress(const Sc
   jump.scale = j[3];
   jump.iterations = static_cast<int>(j[4]);
   jump.state = system.create_vector();
-  system.set_space_displacements(*jump.state, in.read_doubles(group + "/jump displacements"));
-  for (int m = 0; m < discretization::master_count; ++m)
-    system.set_master(*jump.state, discretization::Master(m), masters[m]);
+  set_state(system, in.read_doubles(group + "/jump displacements"), masters, *jump.state);
   return jump;
 }
 
@@ -233,9 +243,7 @@ analysis::LoadPoint read_checkpoint(const Scene& scene, const discretization::Di
 {
   io::Hdf5File in(scene.loading.restart_file, io::Hdf5File::Mode::read);
   const std::string group = "/checkpoints/" + restart_label(scene.loading);
-  system.set_space_displacements(x, in.read_doubles(group + "/displacements"));
-  const auto masters = in.read_doubles(group + "/masters");
-  for (int m = 0; m < discretization::master_count; ++m) system.set_master(x, discretization::Master(m), masters[m]);
+  set_state(system, in.read_doubles(group + "/displacements"), in.read_doubles(group + "/masters"), x);
   const auto h = in.read_doubles(group + "/history");
   analysis::LoadPoint point;
   point.step = static_cast<int>(h[0]);

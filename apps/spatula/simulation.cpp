@@ -303,8 +303,8 @@ void Run::on_point(const analysis::LoadPoint& p, const Vector& x)
   stop_if_interrupted(*comm_);   // a signal stops the run here, at a converged state, on every rank
 }
 
-// After every iteration of a jump's energy descent that moved the state: the descent (an hour on the paper's mesh)
-// is checkpointed with the last converged state, and a signal stops it, as after a converged step.
+// After every iteration of a jump's energy descent: the descent (an hour on the paper's mesh) is checkpointed with
+// the last converged state when due, and a signal stops it, as after a converged step.
 void Run::on_descent()
 {
   checkpoint_if_due(path_.last(), path_.state());

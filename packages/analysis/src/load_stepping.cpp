@@ -663,7 +663,7 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
   d.cycle_began = now();   // a cycle is not charged with the confirming Newton between two calls
   // After every iteration, accepted or not (an indefinite try costs a factorization: a minute on the paper's mesh),
   // a jump's descent is offered to the watch (checkpoint, signal).
-  for (; d.iteration < jump_.maximum_iterations; watch_descent(d), ++d.iteration) {
+  for (; d.iteration < jump_.maximum_iterations; watch_descent(d, x), ++d.iteration) {
     const double iteration_began = now();
     // Kept factors (of a positive definite shifted tangent at an earlier state) still give a descent direction
     // -M^-1 f; the iteration then needs only f and Pi. Otherwise the tangent at x is assembled and factored.
@@ -727,14 +727,14 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
     d.unshifted_tried = false;
     x.update(best_step, *direction, 1.0);
     after_descent_step(d, fresh, best_step, point.energy - best_energy, iteration_began);
-    if (jump_in_progress_) jump_in_progress_->state->assign(x);   // the jump's descent state so far
   }
   return std::nullopt;
 }
 
-void LoadPath::watch_descent(const Descent& d)
+void LoadPath::watch_descent(const Descent& d, const Vector& x)
 {
   if (!jump_in_progress_) return;   // only a jump's descent is checkpointed
+  jump_in_progress_->state->assign(x);
   jump_in_progress_->shift = d.eta;
   jump_in_progress_->scale = d.scale;
   jump_in_progress_->iterations = d.iteration + 1;
@@ -766,11 +766,7 @@ std::variant<int, std::string> LoadPath::descend(Vector& x, const JumpInProgress
     }
     if (log_ && tables_) *log_ << d.table.str();
     d.table.str("");
-    if (d.iteration >= jump_.maximum_iterations) {
-      if (jump_in_progress_) {   // kept (with the last state of the path): more iterations can go on from here
-        jump_in_progress_->shift = d.eta;
-        jump_in_progress_->iterations = d.iteration;
-      }
+    if (d.iteration >= jump_.maximum_iterations) {   // jump_in_progress_ is kept: more iterations can go on from it
       start->update(1.0, x, -1.0);
       std::ostringstream reason;
       reason << "no stable state within " << jump_.maximum_iterations << " iterations (" << d.accepted

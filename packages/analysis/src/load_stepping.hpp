@@ -289,8 +289,8 @@ private:
   // `resumed`: go on with a checkpointed descent (x is its state) from its shift and iteration count.
   std::variant<int, std::string> descend(Vector& x, const JumpInProgress* resumed = nullptr);
   std::optional<std::string> descend_to_small_gradient(Vector& x, Descent& descent, double small_gradient);
-  // After a descent iteration of a jump: its shift and count into jump_in_progress_, then the descent watch.
-  void watch_descent(const Descent& descent);
+  // After a descent iteration of a jump: its state x, shift and count into jump_in_progress_, then the descent watch.
+  void watch_descent(const Descent& descent, const Vector& x);
   // One descent iteration's state at x: residual f, Pi, |f| and, with fresh factors (the tangent shifted by the
   // descent's eta, factored), the negative pivots of their inertia.
   struct DescentPoint {
