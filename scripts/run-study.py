@@ -50,6 +50,7 @@ from xml.etree import ElementTree
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from convergence import ASSUMED_ORDER, LEVELS, richardson  # noqa: E402
 from curves import interpolate, pad_slip, pull_off_summary, read_curve  # noqa: E402
+from run_lock import DirectoryInUse, directory_lock  # noqa: E402
 from scenes import app_diagnosis  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -217,15 +218,18 @@ def archive(work, level, scene):
 
 
 def put_back(kept, target_directory, log):
-    """Copies a kept run (complete or stopped) into target_directory, replacing it whole, and its run.log to `log`."""
-    os.makedirs(target_directory + '.restoring', exist_ok=True)
-    for name in os.listdir(kept):
-        if name != 'run.log':
-            shutil.copyfile(os.path.join(kept, name), os.path.join(target_directory + '.restoring', name))
-    if os.path.exists(os.path.join(kept, 'run.log')):
-        shutil.copyfile(os.path.join(kept, 'run.log'), log)
-    shutil.rmtree(target_directory, ignore_errors=True)
-    os.replace(target_directory + '.restoring', target_directory)
+    """Copies a kept run (complete or stopped) into target_directory, replacing it whole, and its run.log to `log`.
+    Under the run's directory lock: a directory a live run is writing is never replaced (run_lock.DirectoryInUse)."""
+    run_directory = re.sub(r'\.(partial|incomplete)$', '', target_directory)
+    with directory_lock(run_directory):
+        os.makedirs(target_directory + '.restoring', exist_ok=True)
+        for name in os.listdir(kept):
+            if name != 'run.log':
+                shutil.copyfile(os.path.join(kept, name), os.path.join(target_directory + '.restoring', name))
+        if os.path.exists(os.path.join(kept, 'run.log')):
+            shutil.copyfile(os.path.join(kept, 'run.log'), log)
+        shutil.rmtree(target_directory, ignore_errors=True)
+        os.replace(target_directory + '.restoring', target_directory)
 
 
 def restore(work, runs):
@@ -974,4 +978,8 @@ def main():
 
 
 if __name__ == '__main__':
-    sys.exit(main())
+    try:
+        sys.exit(main())
+    except DirectoryInUse as error:   # a run of the study's is being written by another process
+        print(f'run-study: {error}', file=sys.stderr)
+        sys.exit(2)

@@ -1,5 +1,7 @@
 #include "checkpoint.hpp"
 
+#include "io/checked_write.hpp"
+
 #include "io/hdf5_file.hpp"
 #include "parameters/parameter_validation.hpp"
 
@@ -103,15 +105,22 @@ void write_checkpoint(const std::string& file, const std::string& label, const d
   namespace fs = std::filesystem;
   const std::string writing = file + ".writing";
   const bool exists = fs::exists(file);
+  // A failed write (a full disk) leaves the checkpoints file as it was, without the half-written copy beside it.
+  struct RemoveUnlessRenamed {
+    const std::string& path;
+    bool renamed = false;
+    ~RemoveUnlessRenamed()
+    {
+      std::error_code ignored;
+      if (!renamed) fs::remove(path, ignored);
+    }
+  } copy{writing};
   if (exists) fs::copy_file(file, writing, fs::copy_options::overwrite_existing);
   {
     io::Hdf5File out(writing, exists ? io::Hdf5File::Mode::append : io::Hdf5File::Mode::create);
     const std::string group = "/checkpoints/" + label;
     if (out.exists(group + "/displacements")) {
-      if (label != last_state_label) {   // already taken (a restarted run passing it again)
-        fs::remove(writing);
-        return;
-      }
+      if (label != last_state_label) return;   // already taken (a restarted run passing it again)
       out.remove(group);
     }
     out.write(group + "/displacements", displacements, 3);
@@ -133,8 +142,10 @@ void write_checkpoint(const std::string& file, const std::string& label, const d
                                                   record.step_control.increment, record.step_control.failed_load,
                                                   record.step_control.failed_known ? 1.0 : 0.0,
                                                   record.step_control.bisecting ? 1.0 : 0.0});
+    out.close();
   }
-  fs::rename(writing, file);
+  io::rename_path(writing, file);
+  copy.renamed = true;
 }
 
 bool resumable(const std::string& file)

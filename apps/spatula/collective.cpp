@@ -7,6 +7,7 @@
 #include <mpi.h>
 
 #include <cstdlib>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,13 @@ void abort_all(int exit_code)
   if (initialized && !finalized) MPI_Comm_size(MPI_COMM_WORLD, &size);
   if (size > 1) MPI_Abort(MPI_COMM_WORLD, exit_code);
   std::exit(exit_code);
+}
+
+void end_now(int exit_code)
+{
+  std::cout.flush();
+  std::cerr.flush();
+  std::_Exit(exit_code);
 }
 
 }  // namespace spatula::app

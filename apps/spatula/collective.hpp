@@ -25,5 +25,9 @@ void agree(const Teuchos::Comm<int>& comm, const std::function<void()>& check, b
 
 // Ends the whole MPI job with `exit_code` (MPI_Abort); on one rank, a plain exit.
 [[noreturn]] void abort_all(int exit_code);
+// Ends this process at once with `exit_code`, its standard streams flushed, without MPI_Finalize and the library
+// shutdowns it runs: for a process whose HDF5 library holds a file it could not close (io::Hdf5File::unclosed_files),
+// which HDF5's shutdown would crash on.
+[[noreturn]] void end_now(int exit_code);
 
 }  // namespace spatula::app

@@ -8,10 +8,13 @@
 #include "collective.hpp"
 #include "default_scene.hpp"
 #include "interruption.hpp"
+#include "output_checks.hpp"
 #include "preflight.hpp"
 #include "scene.hpp"
 #include "simulation.hpp"
 
+#include "io/checked_write.hpp"
+#include "io/hdf5_file.hpp"
 #include "io/mesh_output.hpp"
 #include "mesh/mesh_summary.hpp"
 #include "io/output_directory.hpp"
@@ -30,6 +33,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 
 namespace {
 
@@ -73,14 +77,16 @@ Options parse(int argc, char** argv)
 void write_summary_files(const spatula::io::OutputDirectory& directory, const spatula::mesh::MeshSummary& summary,
                          const spatula::geometry::SpatulaShape& shape, const std::string& mesh_choice)
 {
-  std::ofstream text(directory.file("mesh_summary.txt"));
+  std::ostringstream text;
   spatula::mesh::print(text, summary);
   if (!mesh_choice.empty()) text << "  " << mesh_choice << "\n";
   text << "  r5 [nm]                             " << shape.r5() << "\n"
        << "  theta_s [deg]                       " << shape.theta_s() * 180.0 / pi << "\n";
-  std::ofstream csv(directory.file("mesh_summary.csv"));
+  spatula::io::write_text_file(directory.file("mesh_summary.txt"), text.str());
+  std::ostringstream csv;
   spatula::mesh::write_csv(csv, summary);
   csv << "r5_nm," << shape.r5() << "\ntheta_s_deg," << shape.theta_s() * 180.0 / pi << "\n";
+  spatula::io::write_text_file(directory.file("mesh_summary.csv"), csv.str());
 }
 
 // A scene with everything checked that can be checked without solving, and its mesh.
@@ -93,9 +99,10 @@ struct Checked {
   std::string resume_from;   // --resume: the stopped run's directory
 };
 
-// Reads and checks the scene, the output directory, the mesh against the memory and the ranks, the restart file:
-// before anything is written, each check ending on every rank together (an InputError on all if one fails).
-Checked check_everything(const Options& options, const Teuchos::Comm<int>& comm)
+// Reads and checks the scene, the output directory, the mesh against the memory and the ranks, the restart file,
+// the free space for the output: before anything is written, each check ending on every rank together (an
+// InputError on all if one fails). A run (not --validate-only) then takes the output directory's lock (rank 0).
+Checked check_everything(const Options& options, const Teuchos::Comm<int>& comm, std::unique_ptr<spatula::io::RunLock>& lock)
 {
   using namespace spatula;
   Checked run;
@@ -125,6 +132,9 @@ Checked check_everything(const Options& options, const Teuchos::Comm<int>& comm)
     app::check_checkpoint(*run.scene,
                           discretization::make_node_space(run.mesh, run.partition, app::enrichment_of(*run.scene)));
   });
+  app::agree(comm, [&] { app::check_free_space(*run.scene, app::estimate_output_bytes(*run.scene, run.mesh)); }, true);
+  if (!options.validate_only)
+    app::agree(comm, [&] { lock = app::lock_output_directory(*run.scene, options.scene_file, run.resume_from); }, true);
   return run;
 }
 
@@ -145,10 +155,22 @@ void print_summary(std::ostream& out, const Checked& run, const spatula::mesh::M
       << "\n";
 }
 
+// FAILURE.txt, as far as it can be written: where the disk is full, the error on the standard error says why.
+void write_failure_text(const spatula::io::OutputDirectory& directory, const std::string& text)
+{
+  try {
+    spatula::io::write_text_file(directory.file("FAILURE.txt"), text);
+  } catch (const std::exception& error) {
+    std::cerr << "spatula: " << error.what() << "\n";
+    std::error_code ignored;
+    std::filesystem::remove(directory.file("FAILURE.txt"), ignored);   // not a truncated note
+  }
+}
+
 // What a stopped run leaves beside its partial results: why it stopped and how to go on.
 void write_failure_note(const spatula::io::OutputDirectory& directory, const spatula::app::Stop& stop, int exit_code)
 {
-  std::ofstream note(directory.file("FAILURE.txt"));
+  std::ostringstream note;
   const auto& failure = stop.failure;
   note << "spatula stopped before the end of its load path (exit code " << exit_code << ").\n"
        << "why: " << failure.reason << "\n"
@@ -165,6 +187,7 @@ void write_failure_note(const spatula::io::OutputDirectory& directory, const spa
          << "  Loading/restart from = 'last state'\n"
          << "and another Output/directory (a run into '" << directory.final_path()
          << "' replaces this directory).\n";
+  write_failure_text(directory, note.str());
 }
 
 // The run's field output: new, or a resumed run's own, kept up to the state it resumes from (if that cannot be
@@ -230,6 +253,7 @@ int main(int argc, char** argv)
   const bool root = comm->getRank() == 0;
   std::ostream& out = std::cout;
   app::install_interruption_handlers();
+  std::unique_ptr<io::RunLock> lock;                // rank 0: held until the output directory's last rename
   std::unique_ptr<io::OutputDirectory> directory;   // rank 0, once the run has started
   std::unique_ptr<io::XdmfOutput> fields;
   // A failure after the output directory exists, possibly on some ranks only while the others wait in a collective
@@ -238,12 +262,17 @@ int main(int argc, char** argv)
     std::cerr << "spatula: error (rank " << comm->getRank() << "): " << error.what() << "\n";
     if (directory) {
       fields.reset();
-      std::ofstream(directory->file("FAILURE.txt")) << "spatula stopped with an error (exit code 1): " << error.what()
-                                                    << "\n";
-      directory->abandon();
+      write_failure_text(*directory, "spatula stopped with an error (exit code 1): " + std::string(error.what()) + "\n");
+      try {
+        directory->abandon();
+      } catch (const std::exception& rename_error) {   // (the directory was removed under the run, say)
+        std::cerr << "spatula: " << rename_error.what() << "\n";
+      }
       std::cerr << "spatula: partial results in " << directory->incomplete_path() << "/\n";
     }
+    lock.reset();   // the directory's last rename is done
     if (comm->getSize() > 1) app::abort_all(1);
+    if (io::Hdf5File::unclosed_files()) app::end_now(1);
     return 1;
   };
 
@@ -253,7 +282,7 @@ int main(int argc, char** argv)
       if (root) app::valid_scene_parameters().print(out, Teuchos::ParameterList::PrintOptions().showDoc(true).indent(2).showTypes(true));
       return 0;
     }
-    Checked run = check_everything(options, *comm);
+    Checked run = check_everything(options, *comm, lock);
     const auto summary = mesh::summarize(run.mesh, run.scene->mesh.level);
     if (root) print_summary(out, run, summary);
     if (options.validate_only) {

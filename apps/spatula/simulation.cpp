@@ -3,6 +3,8 @@
 #include "checkpoint.hpp"
 #include "interruption.hpp"
 
+#include "io/checked_write.hpp"
+
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_TimeMonitor.hpp>
 
@@ -30,12 +32,14 @@ public:
   // `resume_after`: go on with the curve of a stopped run, keeping its rows up to that step (-1: a new curve).
   CurveWriter(const std::string& file, double young, double reference_energy, double initial_internal_energy,
               double initial_contact_energy, int resume_after = -1)
-      : young_(young), reference_(reference_energy), initial_internal_(initial_internal_energy),
+      : file_(file), young_(young), reference_(reference_energy), initial_internal_(initial_internal_energy),
         initial_contact_(initial_contact_energy)
   {
     if (resume_after >= 0) {
       keep_rows_up_to(file, resume_after);
+      written_ = static_cast<std::streamoff>(std::filesystem::file_size(file));
       out_.open(file, std::ios::app);
+      io::check_written(out_, file_);
       out_ << std::setprecision(10);
       return;
     }
@@ -44,6 +48,7 @@ public:
             "Pi_ext_1e-18J,Pi_c_1e-18J,Pi_sa_1e-18J,Pi_ext_per_Pi_c0,Pi_int_per_Pi_c0,Pi_sa_per_Pi_c0,"
             "dissipated_per_Pi_c0,balance_error_per_Pi_c0,after_jump,contact_faces_active,contact_faces_skipped,"
             "newton_iterations,negative_pivots,wall_s,u_x_nm\n";
+    commit_row();
     out_ << std::setprecision(10);
   }
   double stored_adhesion(const analysis::LoadPoint& p) const { return 2 * (p.contact_energy - initial_contact_); }
@@ -63,10 +68,24 @@ public:
          << "," << 2 * p.dissipated / reference_ << "," << balance_error(p) << "," << (p.after_jump ? 1 : 0) << ","
          << p.active_faces << "," << p.skipped_faces << ","
          << p.newton_iterations << "," << p.negative_pivots << "," << p.seconds << "," << p.slide << "\n";
-    out_.flush();
+    commit_row();
   }
 
 private:
+  // The rows written so far reach the file, or the curve is cut back to its last whole row (a full disk leaves a
+  // readable curve up to the last state that fitted) and the write failure is thrown.
+  void commit_row()
+  {
+    try {
+      io::check_written(out_, file_);
+      written_ = out_.tellp();   // the end of the file once a row has been written (opened to append)
+    } catch (...) {
+      std::error_code ignored;
+      if (written_ >= 0) std::filesystem::resize_file(file_, static_cast<std::uintmax_t>(written_), ignored);
+      throw;
+    }
+  }
+
   // Rewrites the curve with its header and the rows of steps up to `last_step` (a stopped run's rows past its
   // checkpoint are computed again).
   static void keep_rows_up_to(const std::string& file, int last_step)
@@ -77,11 +96,13 @@ private:
     for (bool header = true; std::getline(in, line); header = false)
       if (header || (!line.empty() && std::stoi(line.substr(0, line.find(','))) <= last_step)) kept += line + "\n";
     in.close();
-    std::ofstream(file + ".writing") << kept;
-    std::filesystem::rename(file + ".writing", file);
+    io::write_text_file(file + ".writing", kept);
+    io::rename_path(file + ".writing", file);
   }
 
+  std::string file_;
   std::ofstream out_;
+  std::streamoff written_ = -1;   // bytes of the curve's whole rows in the file
   double young_, reference_, initial_internal_, initial_contact_;
 };
 

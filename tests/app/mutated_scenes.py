@@ -304,6 +304,36 @@ MUTATIONS = {"no-value": missing("value"), "no-type": missing("type"), "wrong-ty
              "duplicate-sublist": duplicate_sublist, "unknown-key": unknown_key, "wrong-sublist": wrong_sublist}
 
 
+# Hostile files: bounds the program checks on a scene's text before the XML parser reads it (a parser that recurses
+# per nesting level overflows its stack on sublists nested 20,000 deep). Each returns (expected text on stderr, detail,
+# the file's text) for a valid scene's text.
+def nested_too_deep(random_generator, text):
+    depth = random_generator.choice([33, 100, 2000, 20000])
+    inner = '<ParameterList name="x">' * depth + '</ParameterList>' * depth
+    return "nested more than 32 deep", f"{depth} nested sublists", text.replace("</ParameterList>", inner + "</ParameterList>", 1)
+
+
+def too_large(random_generator, text):
+    size = random_generator.choice([(1 << 20) + 1, 3 << 20])
+    return "bytes (at most 1048576", f"a comment of {size} bytes", text.replace(">", "><!--" + "x" * size + "-->", 1)
+
+
+def too_many_elements(random_generator, text):
+    count = random_generator.choice([10001, 15000])
+    many = "".join(f'<Parameter name="p{k}" type="int" value="1"/>' for k in range(count))
+    return "more than 10000 elements", f"{count} parameters", text.replace("</ParameterList>", many + "</ParameterList>", 1)
+
+
+def value_too_long(random_generator, text):
+    length = random_generator.choice([4097, 100000])
+    long_value = f'<Parameter name="long" type="string" value="{"v" * length}"/>'
+    return f"/long': a value of {length} characters", f"a value of {length} characters", \
+        text.replace("</ParameterList>", long_value + "</ParameterList>", 1)
+
+
+HOSTILE = {"hostile-depth": nested_too_deep, "hostile-size": too_large, "hostile-count": too_many_elements,
+           "hostile-value": value_too_long}
+
 Case = collections.namedtuple("Case", "number scene kind key detail xml")
 
 
@@ -312,8 +342,11 @@ def generate(count, seed, scenes, declarations):
     random_generator = random.Random(seed)
     cases = []
     while len(cases) < count:
-        kind = random_generator.choice(list(MUTATIONS))
+        kind = random_generator.choice(list(MUTATIONS) + list(HOSTILE))
         scene, text = random_generator.choice(scenes)
+        if kind in HOSTILE:
+            cases.append(Case(len(cases) + 1, scene, kind, *HOSTILE[kind](random_generator, text)))
+            continue
         root = ElementTree.fromstring(text)
         mutated = MUTATIONS[kind](random_generator, root, declarations)
         if mutated:
@@ -343,8 +376,8 @@ def run(executable, xml, scene_file):
 def check(case, exit_code, output, errors, written):
     """What is wrong with the program's answer to a case (nothing when it passes)."""
     problems = [] if exit_code == 2 else [f"exit code {exit_code}"]
-    if f"'{case.key}'" not in errors:
-        problems.append("key not named")
+    if (case.key if case.kind in HOSTILE else f"'{case.key}'") not in errors:
+        problems.append("bound not named" if case.kind in HOSTILE else "key not named")
     problems += [f"crash text {text!r}" for text in CRASH_TEXTS if text in (output + errors).lower()]
     if written:
         problems.append("wrote " + ", ".join(written[:5]))
@@ -397,7 +430,7 @@ def main():
             tally[case.kind][1] += bool(problems)
             if not problems:
                 continue
-            print(f"FAIL #{case.number} {case.scene} {case.kind} '{case.key}' ({case.detail}): "
+            print(f"FAIL #{case.number} {case.scene} {case.kind} '{case.key[:80]}' ({case.detail}): "
                   f"{'; '.join(problems)}; exit code {exit_code}; stderr: {' '.join(errors[:300].split())}")
             if arguments.keep_failures:
                 kept = pathlib.Path(arguments.keep_failures, f"{case.number:04d}-{case.kind}.xml")
@@ -407,7 +440,7 @@ def main():
 
     failures = sum(failed for _, failed in tally.values())
     print(f"\n{'mutation':<20}{'cases':>7}{'failures':>10}")
-    for kind in MUTATIONS:
+    for kind in list(MUTATIONS) + list(HOSTILE):
         print(f"{kind:<20}{tally[kind][0]:>7}{tally[kind][1]:>10}")
     print(f"{'total':<20}{len(cases):>7}{failures:>10}\ntime {time.monotonic() - start:.1f} s")
     return 1 if failures else 0

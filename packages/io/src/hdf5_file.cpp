@@ -2,15 +2,23 @@
 
 #include <hdf5.h>
 
+#include <cerrno>
+#include <cstring>
 #include <stdexcept>
 
 namespace spatula::io {
 
 namespace {
 
+// The system's reason of the failed call, where it set one (a full disk: "No space left on device").
+std::string system_reason()
+{
+  return errno != 0 ? std::string(": ") + std::strerror(errno) : std::string();
+}
+
 [[noreturn]] void fail(const std::string& what, const std::string& file, const std::string& path)
 {
-  throw std::runtime_error("HDF5: cannot " + what + " '" + path + "' in '" + file + "'");
+  throw std::runtime_error("HDF5: cannot " + what + " '" + path + "' in '" + file + "'" + system_reason());
 }
 
 template <class T>
@@ -26,6 +34,7 @@ template <class T>
 void write_dataset(hid_t file, const std::string& file_name, const std::string& path, const std::vector<T>& values,
                    std::size_t columns)
 {
+  errno = 0;
   const hsize_t dims[2] = {columns > 1 ? values.size() / columns : values.size(), columns};
   const hid_t space = H5Screate_simple(columns > 1 ? 2 : 1, dims, nullptr);
   const hid_t set = H5Dcreate2(file, path.c_str(), memory_type<T>(), space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -56,21 +65,39 @@ std::vector<T> read_dataset(hid_t file, const std::string& file_name, const std:
   return values;
 }
 
+bool unclosed = false;
+
 }  // namespace
+
+bool Hdf5File::unclosed_files() { return unclosed; }
 
 Hdf5File::Hdf5File(const std::string& file_name, Mode mode) : file_name_(file_name)
 {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);   // errors become exceptions, not stderr noise
+  errno = 0;
   handle_ = mode == Mode::create ? H5Fcreate(file_name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT)
             : H5Fopen(file_name.c_str(), mode == Mode::read ? H5F_ACC_RDONLY : H5F_ACC_RDWR, H5P_DEFAULT);
   if (handle_ < 0)
     throw std::runtime_error("HDF5: cannot " + std::string(mode == Mode::create ? "create" : "open") + " file '" +
-                             file_name + "'");
+                             file_name + "'" + system_reason());
 }
 
 Hdf5File::~Hdf5File()
 {
-  if (handle_ >= 0) H5Fclose(static_cast<hid_t>(handle_));
+  if (handle_ >= 0 && H5Fclose(static_cast<hid_t>(handle_)) < 0) unclosed = true;
+}
+
+void Hdf5File::close()
+{
+  errno = 0;
+  const hid_t handle = static_cast<hid_t>(handle_);
+  handle_ = -1;
+  const herr_t flushed = H5Fflush(handle, H5F_SCOPE_LOCAL);
+  const std::string reason = system_reason();
+  const herr_t closed = H5Fclose(handle);
+  if (closed < 0) unclosed = true;
+  if (flushed < 0 || closed < 0)
+    throw std::runtime_error("HDF5: cannot write file '" + file_name_ + "'" + (reason.empty() ? system_reason() : reason));
 }
 
 void Hdf5File::ensure_groups(const std::string& path)

@@ -11,7 +11,12 @@ class Hdf5File {
 public:
   enum class Mode { create, read, append };
   Hdf5File(const std::string& file_name, Mode mode);
-  ~Hdf5File();
+  ~Hdf5File();   // closes quietly: a file written to is closed with `close`, which reports a failed flush
+  void close();   // flushes and closes; throws naming the file and the reason (a full disk shows here)
+  // Whether a file failed to close (its data could not be flushed: a full disk). HDF5 keeps such a file open and
+  // crashes when it tries again as the library shuts down (at MPI_Finalize): a process that has seen this ends
+  // without shutting HDF5 down (app: end_now).
+  static bool unclosed_files();
   Hdf5File(const Hdf5File&) = delete;
   Hdf5File& operator=(const Hdf5File&) = delete;
 

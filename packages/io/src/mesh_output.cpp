@@ -1,5 +1,7 @@
 #include "io/mesh_output.hpp"
 
+#include "io/checked_write.hpp"
+
 #include "io/hdf5_file.hpp"
 
 #include <cstdio>
@@ -66,6 +68,7 @@ XdmfOutput::XdmfOutput(const std::string& directory, const std::string& name, co
   }
   contact_faces_ = static_cast<std::int64_t>(mesh.sides(mesh::Boundary::contact).size());
   file.write("/mesh/contact_quadrilaterals", quads, 4);
+  file.close();
   write_mesh_index();
 }
 
@@ -92,6 +95,7 @@ XdmfOutput::XdmfOutput(const std::string& directory, const std::string& name, co
     node_vector_names_.push_back(node_vector_names);
   }
   for (int k = keep_states; file.exists(state_group(k)); ++k) file.remove(state_group(k));
+  file.close();
   write_states_index();
 }
 
@@ -108,6 +112,7 @@ void XdmfOutput::add_state(const FieldState& state)
     file.write(group + "/time", std::vector<double>{state.time});
     for (const auto& [name, values] : state.cell_scalars) file.write(group + "/" + name, values);
     for (const auto& [name, values] : state.node_vectors) file.write(group + "/" + name, values, 3);
+    file.close();
   }
   times_.push_back(state.time);
   std::vector<std::string> cells, vectors;
@@ -157,12 +162,14 @@ public:
   {
     out_ << " </Domain>\n</Xdmf>\n";
     const std::string temporary = path + ".tmp";
-    {
-      std::ofstream file(temporary);
-      file << out_.str();
-      if (!file) throw std::runtime_error("cannot write '" + temporary + "'");
+    try {
+      write_text_file(temporary, out_.str());
+    } catch (...) {
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);
+      throw;
     }
-    std::filesystem::rename(temporary, path);
+    rename_path(temporary, path);
   }
 
 private:

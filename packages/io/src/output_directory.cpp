@@ -1,5 +1,7 @@
 #include "io/output_directory.hpp"
 
+#include "io/checked_write.hpp"
+
 #include <cstdlib>
 #include <fstream>
 #include <filesystem>
@@ -49,9 +51,8 @@ void make_ours(const fs::path& directory)
   fs::create_directories(directory, error);
   if (error || !fs::is_directory(directory))
     throw std::runtime_error("cannot create output directory '" + directory.string() + "': " + error.message());
-  std::ofstream marker(directory / OutputDirectory::marker_name);
-  marker << "Written by spatula. A later run with this Output/directory may replace this directory.\n";
-  if (!marker) throw std::runtime_error("cannot write in output directory '" + directory.string() + "'");
+  write_text_file((directory / OutputDirectory::marker_name).string(),
+                  "Written by spatula. A later run with this Output/directory may replace this directory.\n");
 }
 
 // Removes a directory of ours; anything else is left alone.
@@ -141,6 +142,8 @@ OutputDirectory::OutputDirectory(const std::string& path, const std::string& sto
     fs::rename(from, staging_);
   }
 }
+
+bool OutputDirectory::is_ours(const std::string& directory) { return ours(directory); }
 
 std::string OutputDirectory::staging_path(const std::string& path) { return absolute_path(path).string() + ".partial"; }
 

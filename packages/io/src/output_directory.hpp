@@ -32,6 +32,8 @@ public:
   // The directories a stopped run of this program left for `path`, newest kind first: the staging directory (the
   // run was killed) and the incomplete one (it stopped on a signal or an error).
   static std::vector<std::string> stopped_runs(const std::string& path);
+  // Whether `directory` is a directory this program wrote (it has the marker).
+  static bool is_ours(const std::string& directory);
   // The staging directory of `path` ("<path>.partial", absolute).
   static std::string staging_path(const std::string& path);
   ~OutputDirectory();                                  // abandons if neither committed nor abandoned

@@ -1,14 +1,17 @@
 #include "parameters/parameter_validation.hpp"
+#include "parameters/xml_bounds.hpp"
 
 #include <Teuchos_ParameterEntryValidator.hpp>
 #include <Teuchos_StringInputSource.hpp>
 #include <Teuchos_XMLParameterListHelpers.hpp>
 #include <Teuchos_XMLParameterListReader.hpp>
+#include <Teuchos_XMLParameterListWriter.hpp>
 
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -322,6 +325,7 @@ void check_tree(const Teuchos::XMLObject& node, const std::string& path, const s
 ParameterList read_xml_string(const std::string& xml, const std::string& origin)
 {
   try {
+    check_xml_bounds(xml);
     const Teuchos::XMLObject root = Teuchos::StringInputSource(xml).getObject();
     check_tree(root, "", xml);
     return Teuchos::XMLParameterListReader().toParameterList(root);
@@ -339,9 +343,13 @@ ParameterList read_xml_file(const std::string& file_name)
 {
   std::ifstream file(file_name);
   if (!file) throw InputError("cannot open input file '" + file_name + "' (missing or unreadable)");
-  std::ostringstream content;
-  content << file.rdbuf();
-  return read_xml_string(content.str(), "file '" + file_name + "'");
+  // At most one byte past the bound is read (a device or a pipe that never ends is refused like a large file).
+  const std::size_t limit = XmlBounds().bytes + 1;
+  std::string content(limit, '\0');
+  file.read(content.data(), static_cast<std::streamsize>(limit));
+  if (file.bad()) throw InputError("cannot read input file '" + file_name + "'");
+  content.resize(static_cast<std::size_t>(file.gcount()));
+  return read_xml_string(content, "file '" + file_name + "'");
 }
 
 namespace {
@@ -361,7 +369,16 @@ ParameterList values_only(const ParameterList& list)
 
 void write_xml_file(const ParameterList& list, const std::string& file_name)
 {
-  Teuchos::writeParameterListToXmlFile(values_only(list), file_name);
+  // Written through a string and checked: a full disk is an error naming the file, not a truncated scene.
+  std::ostringstream text;
+  Teuchos::XMLParameterListWriter writer;
+  text << writer.toXML(values_only(list));
+  errno = 0;
+  std::ofstream out(file_name);
+  out << text.str();
+  out.close();
+  if (!out)
+    throw std::runtime_error("cannot write '" + file_name + "': " + (errno != 0 ? std::strerror(errno) : "the write failed"));
 }
 
 void fail(const std::string& key, double value, const std::string& message)

@@ -24,23 +24,33 @@ const std::vector<std::string>& linear_solver_names()
 
 const std::vector<std::string>& refactor_rule_names()
 {
-  static const std::vector<std::string> names = {"lag", "cost"};
+  static const std::vector<std::string> names = {"lag", "cost", "clock"};
   return names;
 }
 
-void RefactorCost::factored(double factorization_seconds)
+void RefactorCost::factored(double factorization_cost)
 {
-  cycle_seconds_ = factorization_seconds;
+  cycle_cost_ = factorization_cost;
   tangents_ = 1;
 }
 
-bool RefactorCost::keep(double last_tangent_solve_seconds)
+bool RefactorCost::keep(double last_tangent_solve_cost)
 {
   if (tangents_ == 0) return false;   // nothing factored yet
-  cycle_seconds_ += last_tangent_solve_seconds;
-  if (last_tangent_solve_seconds > cycle_seconds_ / tangents_) return false;
+  cycle_cost_ += last_tangent_solve_cost;
+  if (last_tangent_solve_cost > cycle_cost_ / tangents_) return false;
   ++tangents_;
   return true;
+}
+
+double FactorWork::solve(const MumpsStatistics& statistics, bool symmetric)
+{
+  // Each stored entry is used once forward and once backward (L and L^T of LDL^T), or once (L and U of LU): two
+  // operations each. A substitution streams the factors from memory, a factorization works in cache (BLAS-3): on
+  // the medium mesh a factorization did 1.39e10 operations in 0.69 s and a solve 7.8e7 in 0.0305 s, an operation
+  // of the solve 7.8 times as dear (docs/solvers.md, "Refactoring": how to measure it on another machine).
+  constexpr double solve_weight = 8.0;
+  return solve_weight * (symmetric ? 4.0 : 2.0) * statistics.factor_entries;
 }
 
 void LinearSolverParameters::declare(Teuchos::ParameterList& list)
@@ -67,10 +77,12 @@ void LinearSolverParameters::declare(Teuchos::ParameterList& list)
                           Range::closed(1, 1000));
   parameters::declare_string(list, "refactor", parameters::name_of(d.refactor, refactor_rule_names()),
                              "mumps: when a kept factorization is replaced: lag (after 'lag' tangents or once a "
-                             "tangent needed more than 'lag applications' solves) or cost (once the last tangent's "
-                             "solves took longer than the average time per tangent of the factorization's cycle, "
-                             "factorization included, or once its GMRES solve reached its iteration limit; 'lag' "
-                             "and 'lag applications' are then not used)",
+                             "tangent needed more than 'lag applications' solves), cost (once the last tangent's "
+                             "solves cost more than the average per tangent of the factorization's cycle, "
+                             "factorization included, counted from MUMPS' operation counts: the same path on a quiet "
+                             "and a busy machine), or clock (the same from measured seconds: a busy machine changes "
+                             "the path); with cost and clock also once a GMRES solve reached its iteration limit, and "
+                             "'lag' and 'lag applications' are not used)",
                              refactor_rule_names());
 }
 
@@ -93,7 +105,7 @@ namespace {
 // GMRES iterations per solve around MUMPS: an exact inverse needs one (a few more refine); old or low-rank factors more.
 int gmres_limit(const LinearSolverParameters& p)
 {
-  const bool approximate = p.lag > 0 || p.refactor == RefactorRule::cost || p.mumps.low_rank_tolerance > 0.0;
+  const bool approximate = p.lag > 0 || p.refactor != RefactorRule::lag || p.mumps.low_rank_tolerance > 0.0;
   return approximate ? 60 : 10;
 }
 
@@ -120,7 +132,9 @@ public:
     } else {
       solver->factor(*matrix);
       served_ = 0;
-      cost_.factored(solver->statistics().last_factorization_seconds);
+      const auto& statistics = solver->statistics();
+      cost_.factored(parameters_.refactor == RefactorRule::clock ? statistics.last_factorization_seconds
+                                                                 : FactorWork::factorization(statistics));
     }
     applications_at_init_ = solver->statistics().applications_since_factor;
     solve_seconds_at_init_ = solver->statistics().solve_seconds;
@@ -140,9 +154,13 @@ private:
     }
     // Factors that no longer bring GMRES to its tolerance within its iteration limit are replaced whatever the
     // clock says (a capped solve costs the same every time, so the average would never rise above it).
-    const bool capped = statistics.applications_since_factor - applications_at_init_ >= gmres_limit(parameters_);
-    int refactor = capped || !cost_.keep(statistics.solve_seconds - solve_seconds_at_init_) ? 1 : 0;
-    // The clocks differ by rank: any rank that would refactor decides for all.
+    const int applications = statistics.applications_since_factor - applications_at_init_;
+    const bool capped = applications >= gmres_limit(parameters_);
+    const double last_cost = parameters_.refactor == RefactorRule::clock
+                                 ? statistics.solve_seconds - solve_seconds_at_init_
+                                 : applications * FactorWork::solve(statistics, parameters_.mumps.symmetric);
+    int refactor = capped || !cost_.keep(last_cost) ? 1 : 0;
+    // The clocks differ by rank (the operation counts do not): any rank that would refactor decides for all.
     Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, refactor, Teuchos::outArg(refactor));
     return refactor == 0;
   }

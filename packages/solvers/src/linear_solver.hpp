@@ -7,10 +7,13 @@
 //              then needs a few iterations instead of one) until the solves it serves take more than
 //              `lag applications` preconditioner applications, or `lag` tangents have passed: the Newton
 //              directions stay exact (GMRES converges to the tolerance), only the factorizations are saved.
-//              With `refactor` = cost the decision is made from measured time instead: a factorization is kept
-//              while the last tangent's solves took less than the average cost per tangent of the current
-//              factorization's cycle (its factorization time plus all the solve time it served, over its tangents);
-//              that keeps the long-run cost per tangent near its minimum whatever the mesh size.
+//              With `refactor` = cost the decision is made from the modelled work instead (RefactorCost): a
+//              factorization is kept while the last tangent's solves cost less than the average cost per tangent of
+//              the current factorization's cycle (its factorization plus all the solves it served, over its
+//              tangents); that keeps the long-run cost per tangent near its minimum whatever the mesh size. The work
+//              is counted from MUMPS' own operation counts, not measured: the same scene takes the same path on a
+//              quiet and a busy machine. `refactor` = clock decides from measured seconds (it follows the machine,
+//              so a busy machine changes the path).
 //   gmres-ilu  Belos GMRES with Ifpack2 ILU(k) of each rank's rows (block Jacobi across ranks).
 //   gmres-amg  Belos GMRES with MueLu smoothed aggregation (algebraic_multigrid.hpp), its hierarchy reused across
 //              tangents; after a tangent whose solves took `maximum iterations` V-cycles, MUMPS serves the later ones.
@@ -34,24 +37,32 @@ namespace spatula::solvers {
 enum class LinearSolverType { mumps, gmres_ilu, gmres_amg, automatic };
 
 // When a kept MUMPS factorization is replaced by a new one.
-enum class RefactorRule { lag, cost };
+enum class RefactorRule { lag, cost, clock };
 const std::vector<std::string>& refactor_rule_names();   // in the order of RefactorRule
 
-// The cost rule for refactoring, on one rank's clock. A factorization's cycle costs its factorization time plus the
-// solve time of every tangent it served; keeping it for one more tangent pays while the last tangent's solves cost
-// no more than the cycle's average per tangent so far. Renewing when the marginal cost reaches the average keeps
-// the long-run cost per tangent near its minimum (solves get dearer as the factors age), and it adapts by itself:
-// on a small mesh (factorization ~20 solves) it refactors often, on the fine mesh (~70 solves) rarely.
+// The cost rule for refactoring, in any unit of work. A factorization's cycle costs its factorization plus the
+// solves of every tangent it served; keeping it for one more tangent pays while the last tangent's solves cost no
+// more than the cycle's average per tangent so far. Renewing when the marginal cost reaches the average keeps the
+// long-run cost per tangent near its minimum (solves get dearer as the factors age), and it adapts by itself: on
+// a small mesh (a factorization costs ~20 solves) it refactors often, on the fine mesh (~70 solves) rarely.
 class RefactorCost {
 public:
-  void factored(double factorization_seconds);   // a new cycle
-  // The next tangent keeps the factors, given the solve time the last tangent took with them.
-  bool keep(double last_tangent_solve_seconds);
+  void factored(double factorization_cost);   // a new cycle
+  // The next tangent keeps the factors, given the cost of the solves the last tangent took with them.
+  bool keep(double last_tangent_solve_cost);
   int tangents() const { return tangents_; }     // in this cycle, the factorization's own included
 
 private:
-  double cycle_seconds_ = 0.0;
+  double cycle_cost_ = 0.0;
   int tangents_ = 0;
+};
+
+// The modelled work of refactor = cost, in factorization flops: a factorization costs its operation count
+// (MUMPS' RINFOG(3)); a solve the operations of a forward and a backward substitution through the factors, weighted
+// by how much dearer a substitution's operation is than a factorization's (memory-bound against BLAS-3).
+struct FactorWork {
+  static double factorization(const MumpsStatistics& statistics) { return statistics.factorization_flops; }
+  static double solve(const MumpsStatistics& statistics, bool symmetric);
 };
 
 struct LinearSolverParameters {
@@ -64,7 +75,7 @@ struct LinearSolverParameters {
   // 12 % less CPU than 0 on the coarse pull-off at 60 deg with P_max within 0.04 % (docs/error-vs-time.md).
   int lag = 4;
   int lag_applications = 8;     // refactor once a tangent's solves needed more applications than this
-  RefactorRule refactor = RefactorRule::cost;   // lag: the two limits above; cost: measured time
+  RefactorRule refactor = RefactorRule::cost;   // lag: the two limits above; cost: modelled work; clock: seconds
 
   static void declare(Teuchos::ParameterList& list);
   static LinearSolverParameters from(const Teuchos::ParameterList& list);
