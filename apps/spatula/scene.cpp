@@ -25,6 +25,11 @@ void OutputParameters::declare(Teuchos::ParameterList& output)
                              "'spatula scene.xml --resume' goes on after the run was killed "
                              "(0: only when the run stops on a signal or a failure)",
                              parameters::Range::closed(0.0, 1e6));
+  parameters::declare_int(output, "tangent spectrum", d.tangent_spectrum,
+                          "a diagnosis: at every converged state the tangent's eigenvalue nearest zero (this many "
+                          "inverse iterations on its LDL^T factors, one factorization per state) and its mode's "
+                          "participation ratio, into spectrum.csv (0: not computed)",
+                          parameters::Range::closed(0, 100));
 }
 
 OutputParameters OutputParameters::from(const Teuchos::ParameterList& output)
@@ -36,6 +41,7 @@ OutputParameters OutputParameters::from(const Teuchos::ParameterList& output)
   p.field_interval = output.get<int>("field interval");
   p.convergence_tables = output.get<bool>("convergence tables");
   p.checkpoint_minutes = output.get<double>("checkpoint interval");
+  p.tangent_spectrum = output.get<int>("tangent spectrum");
   if (p.directory.empty()) throw parameters::InputError("parameter 'Output/directory' must not be empty");
   return p;
 }

@@ -20,6 +20,7 @@ struct OutputParameters {
   int field_interval = 0;          // write fields every this many converged steps (0: start and end only)
   bool convergence_tables = false;   // print every Newton iteration
   double checkpoint_minutes = 10.0;  // wall-clock minutes between 'last state' checkpoints (0: only at a stop)
+  int tangent_spectrum = 0;          // inverse iterations for spectrum.csv at every converged state (0: none)
   static void declare(Teuchos::ParameterList& output);
   static OutputParameters from(const Teuchos::ParameterList& output);
 };

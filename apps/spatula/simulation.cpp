@@ -2,6 +2,7 @@
 
 #include "checkpoint.hpp"
 #include "interruption.hpp"
+#include "spectrum_output.hpp"
 
 #include "io/checked_write.hpp"
 
@@ -166,6 +167,7 @@ private:
   const double theta_s_, young_;
   double reference_energy_ = 1.0;   // Pi_c0 = A_c w_adh of the full spatula (1 without adhesion)
   std::unique_ptr<CurveWriter> curve_;
+  std::unique_ptr<SpectrumOutput> spectrum_;   // Output/tangent spectrum
   Master stage_ = Master::rotation;
   PathStage path_stage_;   // where the path is: rotation, or lift from where
   Teuchos::RCP<Vector> anchors_;   // the state the stiction anchors were set at ('restart state'), kept in checkpoints
@@ -317,6 +319,12 @@ void Run::on_point(const analysis::LoadPoint& p, const Vector& x)
   if (root_) {
     curve_->write(p, stage_name(stage_), theta_s_);
     print_step(p);
+  }
+  if (scene_.output.tangent_spectrum > 0) {
+    if (!spectrum_)
+      spectrum_ = std::make_unique<SpectrumOutput>(*system_, scene_.linear_solver.mumps, scene_.output.tangent_spectrum,
+                                                   root_ && directory_ ? directory_->file("spectrum.csv") : "");
+    spectrum_->write(p, stage_name(stage_), load_of(p), x);
   }
   const int interval = scene_.output.field_interval;
   if (interval > 0 && p.step % interval == 0) write_fields(x, load_of(p));

@@ -60,6 +60,10 @@ void NewtonParameters::declare(Teuchos::ParameterList& list)
   parameters::declare_int(list, "maximum iterations", d.maximum_iterations,
                           "Newton iterations per load step (fail fast, cut the step)",
                           Range::closed(1, 500));
+  parameters::declare_int(list, "converging extension", d.converging_extension,
+                          "iterations an attempt at 'maximum iterations' may go on while each of its last two "
+                          "iterations cut |f| to 'contraction' or less (0: fail at the limit)",
+                          Range::closed(0, 500));
   // energy (was backtrack): at the medium peel front Newton's steps fall short along their line (the energy's
   // slope keeps 25-35 % of its value at the step's end) and backtracking on |f| halves some of them; the medium
   // peel front (60 nm of lift from 45 deg) 120 -> 99 tangents, coarse pull-off at 45 deg 906 -> 873, results within
@@ -117,6 +121,7 @@ NewtonParameters NewtonParameters::from(const Teuchos::ParameterList& list)
   p.absolute_tolerance = list.get<double>("absolute tolerance");
   p.update_tolerance = list.get<double>("update tolerance");
   p.maximum_iterations = list.get<int>("maximum iterations");
+  p.converging_extension = list.get<int>("converging extension");
   p.line_search = parameters::choice<LineSearch>(list, "line search", line_search_names());
   p.scaled_norms = list.get<std::string>("norms") == "scaled";
   p.inexact = list.get<std::string>("forcing term") == "Eisenstat-Walker";
@@ -228,6 +233,51 @@ private:
   NOX::StatusTest::StatusType status_ = NOX::StatusTest::Unconverged;
 };
 
+// The iteration limit of an attempt, spared while it converges: at `limit` iterations an attempt fails unless each of
+// its last two iterations cut |f| to `contraction` of its value before or less; such an attempt goes on, at most
+// `extension` iterations more. At the medium peel front an attempt often needs 13-14 iterations, the last few
+// converging fast: failing it at 12 threw its iterations away and the cut increments that followed bisected towards a
+// load that was no limit point (docs/performance.md, "The peel front").
+class IterationLimit : public NOX::StatusTest::Generic {
+public:
+  IterationLimit(int limit, int extension, double contraction)
+      : limit_(limit), extension_(extension), contraction_(contraction)
+  {
+  }
+  NOX::StatusTest::StatusType checkStatus(const NOX::Solver::Generic& solver, NOX::StatusTest::CheckType) override
+  {
+    const int iteration = solver.getNumIterations();
+    if (iteration == 0) {
+      older_ratio_ = 1.0;
+      last_ = 0;
+      status_ = NOX::StatusTest::Unconverged;
+      return status_;
+    }
+    if (iteration == last_) return status_;   // asked twice in one iteration
+    last_ = iteration;
+    const double before = solver.getPreviousSolutionGroup().getNormF();
+    const double ratio = before > 0.0 ? solver.getSolutionGroup().getNormF() / before : 1.0;
+    const bool converging = ratio <= contraction_ && older_ratio_ <= contraction_;
+    older_ratio_ = ratio;
+    const bool spent = iteration >= limit_ + extension_ || (iteration >= limit_ && !converging);
+    status_ = spent ? NOX::StatusTest::Failed : NOX::StatusTest::Unconverged;
+    return status_;
+  }
+  NOX::StatusTest::StatusType getStatus() const override { return status_; }
+  std::ostream& print(std::ostream& stream, int indent) const override
+  {
+    return stream << std::string(indent, ' ') << status_ << " iteration limit " << limit_ << " (+" << extension_
+                  << " while converging)\n";
+  }
+
+private:
+  int limit_, extension_;
+  double contraction_;
+  double older_ratio_ = 1.0;
+  int last_ = 0;
+  NOX::StatusTest::StatusType status_ = NOX::StatusTest::Unconverged;
+};
+
 // The energy line search as NOX calls it: the direction d from the previous group, phi'(alpha) = f(x + alpha d) . d,
 // the energy Pi_int + Pi_c of the model's evaluation of that residual (the model's last evaluation on entry is the
 // tangent's, at x). Where d does not lower the energy (phi'(0) >= 0: an indefinite tangent past a fold) or no
@@ -307,7 +357,8 @@ NewtonResult NewtonSolver::solve(discretization::Vector& x, std::ostream* table,
   auto converged = Teuchos::rcp(new Combo(Combo::AND, residual, update));
   auto tests = Teuchos::rcp(new Combo(Combo::OR));
   tests->addStatusTest(converged);
-  tests->addStatusTest(Teuchos::rcp(new MaxIters(parameters_.maximum_iterations)));
+  tests->addStatusTest(Teuchos::rcp(
+      new IterationLimit(parameters_.maximum_iterations, parameters_.converging_extension, parameters_.contraction)));
   tests->addStatusTest(Teuchos::rcp(new FiniteValue));
   constexpr double hopeless_above = 1e-3;   // of the attempt's first |f|: below it an attempt is converging
   // ... as it is below a few times the absolute tolerance, in |f|_2 (NOX's scaled test is |f|_2 / sqrt(n))
@@ -371,7 +422,7 @@ NewtonResult NewtonSolver::solve(discretization::Vector& x, std::ostream* table,
     const auto& final_group = solver->getSolutionGroup();
     const bool cut_short = short_steps && short_steps->getStatus() == NOX::StatusTest::Failed;
     const bool stagnated = status == NOX::StatusTest::Failed && give_up && !cut_short &&
-                           solver->getNumIterations() < parameters_.maximum_iterations;
+                           solver->getNumIterations() < parameters_.maximum_iterations;   // (not the limit)
     result.failure = "no convergence after " + std::to_string(solver->getNumIterations()) + " iterations (" +
                      (stagnated ? "|f| stopped shrinking, " : "") +
                      (cut_short ? "the line search cut the steps short, " : "") +

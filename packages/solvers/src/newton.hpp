@@ -19,6 +19,7 @@ struct NewtonParameters {
   double absolute_tolerance = 1e-5;    // [nN] (scaled norms: the RMS nodal force, 1e-5 nN = 10 fN)
   double update_tolerance = 1e-6;      // [nm] (and rad for the rotation)
   int maximum_iterations = 12;
+  int converging_extension = 8;        // ... more while each of the last two iterations cut |f| by `contraction`
   LineSearch line_search = LineSearch::energy;
   bool scaled_norms = true;                // tolerances on |f|_2 / sqrt(n) and |dx|_inf / n (NOX's default)
   bool inexact = true;                     // Eisenstat-Walker forcing terms for the linear solves

@@ -1,0 +1,120 @@
+#!/usr/bin/env python3
+"""Why Newton needs many iterations at the moving peel front: counts, not timings (a busy machine changes nothing).
+
+Runs, with 'Output/tangent spectrum' (the tangent's eigenvalue nearest zero at every converged state, by inverse
+iteration on its LDL^T factors, and the participation ratio of its mode) and 'Output/convergence tables' on:
+  medium-rotation-45-54   the medium study rotation (docs/study-runs/medium/peel-rotation) restarted from its 45 deg
+                          checkpoint to 54 deg with rotation steps of at most 0.9 deg (the smooth peel);
+  coarse-rotation-to-40   the default scene (coarse) to 40 deg, through its first snaps.
+Each case runs twice: with 'Nonlinear Solver/converging extension' = 0 (an attempt fails at its iteration limit
+whatever its progress) and with the default (it goes on while converging); the row names the setting. For each:
+converged states, tangents (converged and failed attempts), the histogram of Newton iterations per state,
+the nearest eigenvalue's range (nN/nm and over the tangent's mean diagonal) and its mode's participation, and the
+Newton iterations whose energy line search cut the step below 1 (with the slope ratio at the end of such steps:
+near 1 means the energy still fell steeply there, so the longer step was refused by a barrier along the line, not
+by having passed the minimum). Writes docs/peel-front-diagnosis.csv and prints the table for docs/performance.md.
+
+usage: benchmarks/peel_front_diagnosis.py [--work DIR] [--only CASE]   (about 5 minutes; needs a build)
+"""
+import argparse
+import collections
+import csv
+import os
+import re
+import subprocess
+import sys
+import xml.etree.ElementTree as ElementTree
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula'))
+ROTATION = os.path.join(ROOT, 'docs', 'study-runs', 'medium', 'peel-rotation')
+
+
+def set_parameter(root, key, value, kind):
+    *lists, name = key.split('/')
+    node = root
+    for part in lists:
+        found = [c for c in node if c.tag == 'ParameterList' and c.get('name') == part]
+        node = found[0] if found else ElementTree.SubElement(node, 'ParameterList', name=part)
+    found = [c for c in node if c.tag == 'Parameter' and c.get('name') == name]
+    parameter = found[0] if found else ElementTree.SubElement(node, 'Parameter', name=name, type=kind)
+    parameter.set('value', str(value))
+
+
+DIAGNOSIS = [('Output/tangent spectrum', 10, 'int'), ('Output/convergence tables', 'true', 'bool'),
+             ('Output/write mesh', 'false', 'bool'), ('Output/field interval', 0, 'int')]
+CASES = {
+    'medium-rotation-45-54': (os.path.join(ROTATION, 'scene.xml'), [
+        ('Loading/theta_y', 54.0, 'double'), ('Loading/restart file', os.path.join(ROTATION, 'checkpoints.h5'), 'string'),
+        ('Loading/restart theta_y', 45.0, 'double'), ('Loading/Rotation Steps/initial', 0.9, 'double'),
+        ('Loading/Rotation Steps/maximum', 0.9, 'double')]),
+    'coarse-rotation-to-40': (os.path.join(ROOT, 'xml', 'default.xml'), [('Loading/theta_y', 40.0, 'double')]),
+}
+ROW = re.compile(r'^ +(\d+) +([0-9.e+-]+) +([0-9.e+-]+) +([0-9.e+-]+) +(-?\d+) +([0-9.e+-]+) +([0-9.e+-]+)$')
+
+
+def run(case, work, extension):
+    source, settings = CASES[case]
+    root = ElementTree.parse(source).getroot()
+    name = f'{case}-extension-{extension}'
+    extra = [('Output/directory', name, 'string')]
+    if extension is not None:
+        extra.append(('Nonlinear Solver/converging extension', extension, 'int'))
+    for key, value, kind in settings + DIAGNOSIS + extra:
+        set_parameter(root, key, value, kind)
+    os.makedirs(work, exist_ok=True)
+    scene = os.path.join(work, name + '.xml')
+    ElementTree.ElementTree(root).write(scene)
+    log = os.path.join(work, name + '.log')
+    with open(log, 'w') as out:
+        status = subprocess.run([APP, scene], cwd=work, stdout=out, stderr=subprocess.STDOUT).returncode
+    if status != 0:
+        sys.exit(f'{case}: spatula exited {status}; see {log}')
+    return name, log, os.path.join(work, name, 'spectrum.csv')
+
+
+def summarize(case, log, spectrum):
+    lines = open(log).read().splitlines()
+    rows = [m.groups() for m in (ROW.match(line) for line in lines) if m]
+    tangents = len(rows)
+    cut = [r for r in rows if float(r[3]) < 1.0]
+    failed = sum(1 for line in lines if 'failed (no convergence' in line)
+    states = list(csv.DictReader(open(spectrum)))
+    iterations = [int(s['newton_iterations']) for s in states]
+    histogram = collections.Counter(min(i, 12) for i in iterations)
+    relative = [abs(float(s['nearest_over_mean_diagonal'])) for s in states]
+    value = [float(s['nearest_eigenvalue_nN_per_nm']) for s in states]
+    participation = [float(s['participation']) for s in states]
+    return {
+        'case': case, 'end_theta_y_deg': states[-1]['load'][:8], 'states': len(states), 'tangents': tangents, 'tangents_per_state': round(tangents / len(states), 2),
+        'iterations_in_converged_states': sum(iterations), 'failed_attempts': failed,
+        'line_search_cuts': len(cut),
+        'cut_slope_ratio_median': round(sorted(float(r[6]) for r in cut)[len(cut) // 2], 3) if cut else '',
+        'nearest_eigenvalue_min': f'{min(value):.3e}', 'nearest_eigenvalue_max': f'{max(value):.3e}',
+        'nearest_over_diagonal_min': f'{min(relative):.2e}', 'nearest_over_diagonal_max': f'{max(relative):.2e}',
+        'participation_min': round(min(participation), 3), 'participation_max': round(max(participation), 3),
+        'negative_pivots_max': max(int(s['negative_pivots']) for s in states),
+        'iterations_histogram': ' '.join(f'{k}{"+" if k == 12 else ""}:{histogram[k]}' for k in sorted(histogram)),
+    }
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument('--work', default=os.path.join(ROOT, 'build', 'peel-front-diagnosis'))
+    parser.add_argument('--only', choices=sorted(CASES))
+    arguments = parser.parse_args()
+    results = [summarize(*run(case, arguments.work, extension)) for case in CASES if arguments.only in (None, case)
+               for extension in (0, 8)]
+    if arguments.only is None:
+        with open(os.path.join(ROOT, 'docs', 'peel-front-diagnosis.csv'), 'w', newline='') as out:
+            writer = csv.DictWriter(out, fieldnames=list(results[0]))
+            writer.writeheader()
+            writer.writerows(results)
+    keys = list(results[0])
+    print('| ' + ' | '.join(keys) + ' |\n|' + '---|' * len(keys))
+    for result in results:
+        print('| ' + ' | '.join(str(result[k]) for k in keys) + ' |')
+
+
+if __name__ == '__main__':
+    main()
