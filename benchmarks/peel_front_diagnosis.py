@@ -6,15 +6,17 @@ iteration on its LDL^T factors, and the participation ratio of its mode) and 'Ou
   medium-rotation-45-54   the medium study rotation (docs/study-runs/medium/peel-rotation) restarted from its 45 deg
                           checkpoint to 54 deg with rotation steps of at most 0.9 deg (the smooth peel);
   coarse-rotation-to-40   the default scene (coarse) to 40 deg, through its first snaps.
-Each case runs twice: with 'Nonlinear Solver/converging extension' = 0 (an attempt fails at its iteration limit
-whatever its progress) and with the default (it goes on while converging); the row names the setting. For each:
-converged states, tangents (converged and failed attempts), the histogram of Newton iterations per state,
-the nearest eigenvalue's range (nN/nm and over the tangent's mean diagonal) and its mode's participation, and the
-Newton iterations whose energy line search cut the step below 1 (with the slope ratio at the end of such steps:
-near 1 means the energy still fell steeply there, so the longer step was refused by a barrier along the line, not
-by having passed the minimum). Writes docs/peel-front-diagnosis.csv and prints the table for docs/performance.md.
+each with the solver variants of VARIANTS: today's defaults ('Nonlinear Solver' and 'Linear Solver' as declared; the
+recorded medium scene's own lists are dropped), the recorded scene's solver (the study run's settings: line search
+backtrack, absolute tolerance 1e-9), 'converging extension' = 0 (an attempt fails at its iteration limit whatever
+its progress), and the two uses of 'Nonlinear Solver/Front Elimination'. For each: converged states, tangents
+(converged and failed attempts, the front elimination's local ones included), the histogram of Newton iterations per
+state, the nearest eigenvalue's range (nN/nm and over the tangent's mean diagonal) and its mode's participation, and
+the Newton iterations whose line search cut the step below 1 (with the slope ratio at the end of such steps: near 1
+means the energy still fell steeply there). Writes docs/peel-front-diagnosis.csv and prints the table for
+docs/performance.md.
 
-usage: benchmarks/peel_front_diagnosis.py [--work DIR] [--only CASE]   (about 5 minutes; needs a build)
+usage: benchmarks/peel_front_diagnosis.py [--work DIR] [--only CASE] [--variant NAME]   (about 9 minutes; needs a build)
 """
 import argparse
 import collections
@@ -53,13 +55,36 @@ CASES = {
 ROW = re.compile(r'^ +(\d+) +([0-9.e+-]+) +([0-9.e+-]+) +([0-9.e+-]+) +(-?\d+) +([0-9.e+-]+) +([0-9.e+-]+)$')
 
 
-def run(case, work, extension):
+# Solver variants: (name, keep the recorded scene's solver lists, settings).
+VARIANTS = {
+    'medium-rotation-45-54': [
+        ('default', False, []),
+        ('extension-0', False, [('Nonlinear Solver/converging extension', 0, 'int')]),
+        ('recorded-solver', True, []),
+        ('recorded-solver-extension-0', True, [('Nonlinear Solver/converging extension', 0, 'int')]),
+        ('elimination-before-direction', False,
+         [('Nonlinear Solver/Front Elimination/use', 'before the direction', 'string')]),
+        ('elimination-after-full-step', False,
+         [('Nonlinear Solver/Front Elimination/use', 'after the full step', 'string')]),
+        ('soft-mode-line-search', False, [('Nonlinear Solver/Front Elimination/use', 'soft mode', 'string')]),
+    ],
+    'coarse-rotation-to-40': [
+        ('default', False, []),
+        ('extension-0', False, [('Nonlinear Solver/converging extension', 0, 'int')]),
+    ],
+}
+
+
+def run(case, work, variant):
     source, settings = CASES[case]
+    label, keep_solver, variant_settings = variant
     root = ElementTree.parse(source).getroot()
-    name = f'{case}-extension-{extension}'
-    extra = [('Output/directory', name, 'string')]
-    if extension is not None:
-        extra.append(('Nonlinear Solver/converging extension', extension, 'int'))
+    if not keep_solver:   # today's solver defaults
+        for child in [c for c in root if c.tag == 'ParameterList' and c.get('name') in ('Nonlinear Solver',
+                                                                                         'Linear Solver')]:
+            root.remove(child)
+    name = f'{case}-{label}'
+    extra = [('Output/directory', name, 'string')] + variant_settings
     for key, value, kind in settings + DIAGNOSIS + extra:
         set_parameter(root, key, value, kind)
     os.makedirs(work, exist_ok=True)
@@ -76,7 +101,7 @@ def run(case, work, extension):
 def summarize(case, log, spectrum):
     lines = open(log).read().splitlines()
     rows = [m.groups() for m in (ROW.match(line) for line in lines) if m]
-    tangents = len(rows)
+    tangents = next(int(m.group(1)) for m in (re.match(r'^solver: (\d+) tangents', line) for line in lines) if m)
     cut = [r for r in rows if float(r[3]) < 1.0]
     failed = sum(1 for line in lines if 'failed (no convergence' in line)
     states = list(csv.DictReader(open(spectrum)))
@@ -102,10 +127,13 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('--work', default=os.path.join(ROOT, 'build', 'peel-front-diagnosis'))
     parser.add_argument('--only', choices=sorted(CASES))
+    parser.add_argument('--variant', help='run only the variants of this name (the csv is then left as it is)')
     arguments = parser.parse_args()
-    results = [summarize(*run(case, arguments.work, extension)) for case in CASES if arguments.only in (None, case)
-               for extension in (0, 8)]
-    if arguments.only is None:
+    results = [summarize(*run(case, arguments.work, variant)) for case in CASES if arguments.only in (None, case)
+               for variant in VARIANTS[case] if arguments.variant in (None, variant[0])]
+    if not results:
+        sys.exit(f'peel_front_diagnosis: no variant {arguments.variant!r} in {arguments.only or "any case"}')
+    if arguments.only is None and arguments.variant is None:
         with open(os.path.join(ROOT, 'docs', 'peel-front-diagnosis.csv'), 'w', newline='') as out:
             writer = csv.DictWriter(out, fieldnames=list(results[0]))
             writer.writeheader()

@@ -112,6 +112,8 @@ void NewtonParameters::declare(Teuchos::ParameterList& list)
                              "how the absolute and update tolerances are applied: scaled (NOX's default, as every "
                              "recorded result ran) |f|_2 / sqrt(n) and |dx|_inf / n with n unknowns; unscaled: |f|_2 "
                              "and |dx|_inf themselves", {"scaled", "unscaled"});
+  FrontEliminationParameters::declare(parameters::declare_sublist(
+      list, "Front Elimination", "nonlinear elimination of the unknowns where the residual concentrates"));
 }
 
 NewtonParameters NewtonParameters::from(const Teuchos::ParameterList& list)
@@ -131,6 +133,7 @@ NewtonParameters NewtonParameters::from(const Teuchos::ParameterList& list)
   p.give_up_only_after_failure = list.get<std::string>("give up") == "after a failed step";
   p.short_steps = list.get<int>("short steps");
   p.short_step = list.get<double>("short step");
+  p.elimination = FrontEliminationParameters::from(list.sublist("Front Elimination"));
   return p;
 }
 
@@ -169,6 +172,12 @@ public:
     row.negative_pivots = linear_.mumps_statistics().negative_pivots;
     row.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     result_.iterations.push_back(row);
+    if (table_ && result_.elimination.applications > applications_) {
+      applications_ = result_.elimination.applications;
+      *table_ << "      front: " << result_.elimination.last_nodes << " nodes relaxed, |f| there x "
+              << std::setprecision(3) << result_.elimination.last_reduction << " (" << result_.elimination.local_iterations
+              << " local iterations so far)\n";
+    }
     if (table_)
       *table_ << "    " << std::setw(6) << row.iteration << "  " << std::scientific << std::setprecision(3)
               << row.residual_norm << "  " << row.update_norm << "  " << std::defaultfloat << std::setprecision(3)
@@ -181,6 +190,7 @@ private:
   const LinearSolverFactory& linear_;
   std::ostream* table_;
   std::chrono::steady_clock::time_point start_;
+  int applications_ = 0;
 };
 
 // Gives up on a Newton attempt once `limit` iterations in a row met its rule while |f| was still above `far` times
@@ -284,8 +294,9 @@ private:
 // admissible point was found, NOX's backtracking on |f| takes the step.
 class EnergyLineSearch : public NOX::LineSearch::Generic {
 public:
-  EnergyLineSearch(const SpatulaModel& model, Teuchos::RCP<NOX::LineSearch::Generic> fallback)
-      : model_(model), fallback_(std::move(fallback))
+  EnergyLineSearch(const SpatulaModel& model, Teuchos::RCP<NOX::LineSearch::Generic> fallback,
+                   const FrontEliminationParameters& elimination, EliminationCounts& counts)
+      : model_(model), fallback_(std::move(fallback)), elimination_(elimination), counts_(counts)
   {
   }
 
@@ -304,6 +315,24 @@ public:
       return LinePoint{alpha, evaluation.admissible ? group.getF().innerProduct(direction) : 0.0,
                        evaluation.energy(), evaluation.admissible};
     };
+    if (elimination_.use == EliminationUse::after_full_step) {
+      const LinePoint full = evaluate(1.0);
+      const bool past = !full.admissible || full.slope > 0.0 || full.energy > origin.energy;
+      if (past && full.admissible) {   // relax the nodes the full step carried too far, from the full step
+        const auto& thyra_x = dynamic_cast<const NOX::Thyra::Vector&>(group.getX());
+        const auto& thyra_f = dynamic_cast<const NOX::Thyra::Vector&>(group.getF());
+        auto x = Teuchos::rcp(
+            new discretization::Vector(*Extract::getConstTpetraVector(thyra_x.getThyraRCPVector()), Teuchos::Copy));
+        discretization::Vector f(*Extract::getConstTpetraVector(thyra_f.getThyraRCPVector()), Teuchos::Copy);
+        if (relax_front(model_, *x, f, elimination_, counts_) && model_.last_evaluation().admissible &&
+            model_.last_evaluation().energy() < origin.energy) {
+          group.setX(NOX::Thyra::Vector(Thyra::createVector(x, thyra_x.getThyraRCPVector()->space())));
+          group.computeF();
+          step = 1.0;
+          return true;
+        }
+      }
+    }
     const LinePoint chosen = search_energy_line(evaluate, origin, EnergyLineSearchParameters{});
     if (!chosen.admissible) return fallback_->compute(group, step, direction, solver);
     if (chosen.step != evaluated) evaluate(chosen.step);
@@ -314,19 +343,28 @@ public:
 private:
   const SpatulaModel& model_;
   Teuchos::RCP<NOX::LineSearch::Generic> fallback_;
+  FrontEliminationParameters elimination_;
+  EliminationCounts& counts_;
 };
 
 class EnergyLineSearchFactory : public NOX::LineSearch::UserDefinedFactory {
 public:
-  explicit EnergyLineSearchFactory(const SpatulaModel& model) : model_(model) {}
+  EnergyLineSearchFactory(const SpatulaModel& model, const FrontEliminationParameters& elimination,
+                          EliminationCounts& counts)
+      : model_(model), elimination_(elimination), counts_(counts)
+  {
+  }
   Teuchos::RCP<NOX::LineSearch::Generic> buildLineSearch(const Teuchos::RCP<NOX::GlobalData>& data,
                                                          Teuchos::ParameterList& list) const override
   {
-    return Teuchos::rcp(new EnergyLineSearch(model_, Teuchos::rcp(new NOX::LineSearch::Backtrack(data, list))));
+    return Teuchos::rcp(new EnergyLineSearch(model_, Teuchos::rcp(new NOX::LineSearch::Backtrack(data, list)),
+                                             elimination_, counts_));
   }
 
 private:
   const SpatulaModel& model_;
+  FrontEliminationParameters elimination_;
+  EliminationCounts& counts_;
 };
 
 }  // namespace
@@ -389,7 +427,7 @@ NewtonResult NewtonSolver::solve(discretization::Vector& x, std::ostream* table,
   line_search.set("Method", method);
   if (parameters_.line_search == LineSearch::energy)
     line_search.set<Teuchos::RCP<NOX::LineSearch::UserDefinedFactory>>(
-        "User Defined Line Search Factory", Teuchos::rcp(new EnergyLineSearchFactory(*model_)));
+        "User Defined Line Search Factory", Teuchos::rcp(new EnergyLineSearchFactory(*model_, parameters_.elimination, result.elimination)));
   // When no step reduces |f|, NOX takes its recovery step (a full step); adhesion problems often need it (|f| is
   // not monotone along good Newton steps). A non-finite or inverted result is caught by the model instead.
   for (const char* kind : {"Backtrack", "Polynomial"}) {
@@ -398,6 +436,13 @@ NewtonResult NewtonSolver::solve(discretization::Vector& x, std::ostream* table,
     sub.set("Minimum Step", 1e-4);
   }
   list->sublist("Direction").set("Method", "Newton");
+  if (parameters_.elimination.use == EliminationUse::before_direction ||
+      parameters_.elimination.use == EliminationUse::soft_mode) {
+    list->sublist("Direction").set("Method", "User Defined");
+    list->sublist("Direction").set<Teuchos::RCP<NOX::Direction::UserDefinedFactory>>(
+        "User Defined Direction Factory",
+        Teuchos::rcp(new FrontEliminationFactory(*model_, parameters_.elimination, result.elimination)));
+  }
   auto& newton = list->sublist("Direction").sublist("Newton");
   newton.sublist("Linear Solver").set("Tolerance", linear_solver_.parameters().tolerance);
   if (parameters_.inexact) {   // NOX sets the linear tolerance of every iteration from the last contraction

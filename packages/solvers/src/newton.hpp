@@ -3,6 +3,7 @@
 //   (|f|_2 <= absolute tolerance  or  |f|_2 <= relative tolerance * |f_0|_2)  and  |dx|_inf <= update tolerance,
 // and a convergence table per step: iteration, residual norm, update norm, line-search step, negative pivots of
 // the tangent (MUMPS LDL^T inertia), seconds, slope ratio (below).
+#include "solvers/front_elimination.hpp"
 #include "solvers/linear_solver.hpp"
 #include "solvers/spatula_model.hpp"
 
@@ -35,6 +36,7 @@ struct NewtonParameters {
   // use there (past a fold, an indefinite tangent). 0: off.
   int short_steps = 2;
   double short_step = 0.125;
+  FrontEliminationParameters elimination;   // the sublist "Front Elimination"
 
   static void declare(Teuchos::ParameterList& list);
   static NewtonParameters from(const Teuchos::ParameterList& list);
@@ -59,6 +61,7 @@ struct NewtonResult {
   std::string failure;   // why not, for the log
   double initial_residual_norm = 0.0;
   std::vector<NewtonIteration> iterations;
+  EliminationCounts elimination;
 };
 
 class NewtonSolver {

@@ -81,6 +81,25 @@ Base::OutArgs<double> SpatulaModel::createOutArgsImpl() const
   return std::move(out);
 }
 
+const discretization::Evaluation& SpatulaModel::evaluate(const discretization::Vector& x,
+                                                         discretization::Vector* residual, bool with_jacobian) const
+{
+  ++(with_jacobian ? counters_.jacobians : counters_.residuals);
+  // A state with non-finite entries (a failed linear solve upstream) is inadmissible as it stands.
+  if (!std::isfinite(x.norm1())) {
+    last_ = discretization::Evaluation{};
+    last_.admissible = false;
+  } else {
+    last_ = system_->evaluate(x, residual, with_jacobian);
+  }
+  if (!last_.admissible) {
+    // An inverted element: no residual exists. A huge one makes NOX's line search step back.
+    ++counters_.inadmissible;
+    if (residual) residual->putScalar(1e100);
+  }
+  return last_;
+}
+
 void SpatulaModel::evalModelImpl(const Base::InArgs<double>& in, const Base::OutArgs<double>& out) const
 {
   Teuchos::RCP<const discretization::Vector> x = Extract::getConstTpetraVector(in.get_x());
@@ -95,21 +114,10 @@ void SpatulaModel::evalModelImpl(const Base::InArgs<double>& in, const Base::Out
     x = shifted;
   }
   const bool with_jacobian = !W_out.is_null() || !dfdp.is_null();
-  ++(with_jacobian ? counters_.jacobians : counters_.residuals);
-  // A state with non-finite entries (a failed linear solve upstream) is inadmissible as it stands.
-  if (!std::isfinite(x->norm1())) {
-    last_ = discretization::Evaluation{};
-    last_.admissible = false;
-  } else {
-    last_ = system_->evaluate(*x, f.get(), with_jacobian);
-  }
-  if (!last_.admissible && with_jacobian)
-    throw std::runtime_error("tangent asked at an inadmissible state (inverted element " +
-                             std::to_string(last_.inverted_element) + " or non-finite displacements)");
-  if (!last_.admissible) {
-    // An inverted element: no residual exists. A huge one makes NOX's line search step back.
-    ++counters_.inadmissible;
-    if (!f.is_null()) f->putScalar(1e100);
+  if (!evaluate(*x, f.get(), with_jacobian).admissible) {
+    if (with_jacobian)
+      throw std::runtime_error("tangent asked at an inadmissible state (inverted element " +
+                               std::to_string(last_.inverted_element) + " or non-finite displacements)");
     return;
   }
   if (!dfdp.is_null()) {

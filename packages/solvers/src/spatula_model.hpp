@@ -41,6 +41,10 @@ public:
   const ModelCounters& counters() const { return counters_; }
   // The last evaluation (reactions, energy, admissibility).
   const discretization::Evaluation& last_evaluation() const { return last_; }
+  // Evaluates f at x (into `residual`, if non-null) and with `with_jacobian` the tangent into system().jacobian(),
+  // counted as NOX's evaluations are; an inadmissible state returns admissible = false and fills f with 1e100.
+  const discretization::Evaluation& evaluate(const discretization::Vector& x, discretization::Vector* residual,
+                                             bool with_jacobian) const;
 
 private:
   Thyra::ModelEvaluatorBase::OutArgs<double> createOutArgsImpl() const override;

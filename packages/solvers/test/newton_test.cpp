@@ -141,7 +141,10 @@ TEST(Parameters, AnEmptyListReadsBackAsTheTypedDefaults)
   expect_same_fields(Newton::from(newton_list), Newton{}, &Newton::relative_tolerance, &Newton::absolute_tolerance,
                      &Newton::update_tolerance, &Newton::maximum_iterations, &Newton::line_search, &Newton::scaled_norms,
                      &Newton::inexact, &Newton::non_contracting_iterations, &Newton::give_up_only_after_failure,
-                     &Newton::contraction, &Newton::short_steps, &Newton::short_step);
+                     &Newton::contraction, &Newton::short_steps, &Newton::short_step, &Newton::converging_extension);
+  using Elimination = solvers::FrontEliminationParameters;
+  expect_same_fields(Newton::from(newton_list).elimination, Elimination{}, &Elimination::use, &Elimination::node_share,
+                     &Elimination::maximum_nodes, &Elimination::iterations, &Elimination::reduction);
   using Linear = solvers::LinearSolverParameters;
   const auto linear = Linear::from(linear_list);
   expect_same_fields(linear, Linear{}, &Linear::type, &Linear::tolerance, &Linear::maximum_iterations,
