@@ -7,7 +7,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bash "$root/scripts/install-dependencies.sh"
 bash "$root/scripts/build.sh"
-OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1} "$root/build/apps/spatula/spatula" "$@"
+"$root/build/apps/spatula/spatula" "$@"
 scene=$root/xml/default.xml
 if [ $# -gt 0 ] && [ -f "$1" ]; then scene=$1; fi
 directory=$(sed -n 's|.*name="directory" type="string" value="\([^"]*\)".*|\1|p' "$scene" | head -1)

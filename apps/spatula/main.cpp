@@ -10,6 +10,7 @@
 #include "interruption.hpp"
 #include "output_checks.hpp"
 #include "preflight.hpp"
+#include "resource_limits.hpp"
 #include "scene.hpp"
 #include "simulation.hpp"
 
@@ -117,7 +118,7 @@ Checked check_everything(const Options& options, const Teuchos::Comm<int>& comm,
   app::agree(comm, [&] { app::check_output_directory(*run.scene, options.scene_file); }, true);
   app::agree(comm, [&] {
     Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: mesh"));
-    run.mesh = app::make_mesh_within_memory(*run.scene, *run.shape, run.memory);
+    run.mesh = app::make_mesh_within_memory(*run.scene, *run.shape, comm.getSize(), run.memory);
     run.partition = mesh::partition_mesh(run.mesh, comm.getSize());
     app::check_ranks(run.mesh, run.partition);
   });
@@ -132,7 +133,7 @@ Checked check_everything(const Options& options, const Teuchos::Comm<int>& comm,
     app::check_checkpoint(*run.scene,
                           discretization::make_node_space(run.mesh, run.partition, app::enrichment_of(*run.scene)));
   });
-  app::agree(comm, [&] { app::check_free_space(*run.scene, app::estimate_output_bytes(*run.scene, run.mesh)); }, true);
+  app::agree(comm, [&] { app::check_output_limits(*run.scene, app::estimate_output(*run.scene, run.mesh)); }, true);
   if (!options.validate_only)
     app::agree(comm, [&] { lock = app::lock_output_directory(*run.scene, options.scene_file, run.resume_from); }, true);
   return run;
@@ -146,8 +147,9 @@ void print_summary(std::ostream& out, const Checked& run, const spatula::mesh::M
       << "  theta_s [deg]                       " << run.shape->theta_s() * 180.0 / pi << "\n"
       << "  partition                           " << run.partition.ranks << " rank(s), elements per rank:";
   for (int r = 0; r < run.partition.ranks; ++r) out << " " << run.partition.elements_of(r).size();
-  out << "\n  memory estimate                     " << run.memory.bytes / 1e9 << " GB of "
-      << run.memory.available_bytes / 1e9 << " GB available\n";
+  out << "\n  memory estimate                     " << run.memory.bytes / 1e9 << " GB";
+  if (run.memory.available_source.empty()) out << " (no memory limit known)\n";
+  else out << " of " << run.memory.available_bytes / 1e9 << " GB available (" << run.memory.available_source << ")\n";
   out << "  linear solver                       "
       << spatula::parameters::name_of(run.memory.solver, spatula::solvers::linear_solver_names())
       << (run.scene->validated.sublist("Linear Solver").get<std::string>("type") == "auto"
@@ -230,6 +232,19 @@ void open_output(const Checked& run, const spatula::mesh::MeshSummary& summary,
     fields = open_fields(*directory, run, scene, out);
 }
 
+// What the watchdog leaves where a signal's stop does not reach a converged state in time (interruption.hpp).
+void watch_output(const spatula::io::OutputDirectory& directory, const spatula::app::Scene& scene)
+{
+  std::ostringstream note;
+  note << "spatula was ended by its watchdog: no converged state within 'Job/stop grace' = " << scene.job.stop_grace
+       << " s of the signal to stop (exit code 128 + the signal).\n"
+       << "results up to the last converged state: curve.csv (this directory)\n";
+  spatula::app::set_watchdog_output(directory.file("FAILURE.txt"),
+                                    spatula::io::OutputDirectory::staging_path(scene.output.directory),
+                                    directory.incomplete_path(), note.str());
+  if (scene.resume) spatula::app::note_checkpoint_written();   // the stopped run's checkpoint is there
+}
+
 // A run that stopped before the end of its load path: FAILURE.txt, the directory renamed <directory>.incomplete,
 // and why on the standard error.
 void leave_stopped_run(spatula::io::OutputDirectory& directory, const spatula::app::Stop& stop, int exit_code)
@@ -247,6 +262,10 @@ void leave_stopped_run(spatula::io::OutputDirectory& directory, const spatula::a
 int main(int argc, char** argv)
 {
   using namespace spatula;
+  if (const auto why = app::limits_too_small_to_start(); !why.empty()) {   // (MPI's own failure would not say so)
+    std::cerr << "spatula: input error: " << why << "\n";
+    return 2;
+  }
   Teuchos::GlobalMPISession mpi_session(&argc, &argv, nullptr);
   Tpetra::ScopeGuard kokkos_scope(&argc, &argv);   // Kokkos starts here, not lazily at the first Tpetra::Map
   const auto comm = Teuchos::DefaultComm<int>::getComm();
@@ -283,8 +302,11 @@ int main(int argc, char** argv)
       return 0;
     }
     Checked run = check_everything(options, *comm, lock);
+    app::set_stop_grace(run.scene->job.stop_grace);
+    const std::string threads = app::set_threads(run.scene->job);
     const auto summary = mesh::summarize(run.mesh, run.scene->mesh.level);
     if (root) print_summary(out, run, summary);
+    if (root) out << "  " << threads << "\n";
     if (options.validate_only) {
       if (root) out << "spatula: scene " << (options.scene_file.empty() ? "<default>" : options.scene_file) << " is valid\n";
       return 0;
@@ -293,6 +315,7 @@ int main(int argc, char** argv)
     auto& scene = *run.scene;
     if (scene.resume) scene.loading.restart_file = app::resumed_checkpoint_file(scene);
     app::agree(*comm, [&] { open_output(run, summary, directory, fields, out); }, true);
+    if (root) watch_output(*directory, scene);
     if (root && scene.resume) out << "spatula: resuming the stopped run " << run.resume_from << "\n";
     if (scene.loading.type != app::LoadingType::none) {
       const auto stop =
@@ -320,6 +343,9 @@ int main(int argc, char** argv)
     if (root) std::cerr << "spatula: error: " << error.what() << "\n";
     if (root && directory) directory->abandon();
     return 1;
+  } catch (const std::bad_alloc& error) {   // one rank's allocation (solvers/out_of_memory.hpp, allocation.cpp)
+    const std::string what = error.what();
+    return failed_after_start(std::runtime_error(what.rfind("out of memory", 0) == 0 ? what : "out of memory: " + what));
   } catch (const std::exception& error) {
     return failed_after_start(error);
   }

@@ -1,6 +1,7 @@
 #include "output_checks.hpp"
 
 #include "preflight.hpp"
+#include "resource_limits.hpp"
 
 #include "io/output_directory.hpp"
 #include "parameters/parameter_validation.hpp"
@@ -78,7 +79,7 @@ std::unique_ptr<io::RunLock> lock_output_directory(const Scene& scene, const std
   return lock;
 }
 
-double estimate_output_bytes(const Scene& scene, const mesh::HexMesh& mesh)
+OutputEstimate estimate_output(const Scene& scene, const mesh::HexMesh& mesh)
 {
   const double nodes = double(mesh.node_count()), elements = double(mesh.element_count());
   const auto& loading = scene.loading;
@@ -99,12 +100,25 @@ double estimate_output_bytes(const Scene& scene, const mesh::HexMesh& mesh)
   const double checkpoint_bytes = nodes * 6 * 8 + 8 * per_dataset;
   const double checkpoints = loading.type == LoadingType::none ? 0.0 : 2.0 * (double(loading.checkpoints.size()) + 1.0);
   constexpr double curve_row = 400.0, small_files = 64.0 * 1024.0;   // scene, summaries, FAILURE.txt, marker
-  return (fields ? mesh_bytes + field_states * state_bytes : 0.0) + checkpoints * checkpoint_bytes +
-         states * curve_row + small_files;
+  OutputEstimate estimate;
+  const double fields_file = fields ? mesh_bytes + field_states * state_bytes : 0.0;
+  const double checkpoints_file = 0.5 * checkpoints * checkpoint_bytes;   // (the other half: the copy replaced)
+  estimate.total = fields_file + checkpoints * checkpoint_bytes + states * curve_row + small_files;
+  estimate.largest = std::max({fields_file, checkpoints_file, states * curve_row});
+  estimate.largest_file = estimate.largest == fields_file ? "mesh.h5"
+                          : estimate.largest == checkpoints_file ? "checkpoints.h5" : "curve.csv";
+  return estimate;
 }
 
-void check_free_space(const Scene& scene, double output_bytes)
+void check_output_limits(const Scene& scene, const OutputEstimate& estimate)
 {
+  const auto file_size = file_size_limit();
+  if (estimate.largest > file_size.value)
+    throw parameters::InputError(key_of(scene) + ": the run will write a file of up to about " +
+                                 megabytes(estimate.largest) + " (" + estimate.largest_file + "), above " +
+                                 file_size.name + " of " + megabytes(file_size.value) + ": raise the limit (ulimit -f "
+                                 "unlimited) or write fewer field states ('Output/field interval')");
+  const double output_bytes = estimate.total;
   const fs::path ancestor = existing_ancestor(scene.output.directory);
   struct statvfs space {};
   if (::statvfs(ancestor.c_str(), &space) != 0) return;   // unknown: the writes themselves are checked

@@ -19,9 +19,14 @@ std::unique_ptr<io::RunLock> lock_output_directory(const Scene& scene, const std
 
 // Bytes the run will write at most, on the mesh's nodes and elements: the mesh and its field states (every
 // 'Output/field interval' steps of the load path's estimated step count), the checkpoints file (each checkpoint
-// inclination and the last state, twice while it is replaced) and the curve.
-double estimate_output_bytes(const Scene& scene, const mesh::HexMesh& mesh);
-// An InputError with the estimate when the file system of 'Output/directory' has less free space than that.
-void check_free_space(const Scene& scene, double output_bytes);
+// inclination and the last state, twice while it is replaced) and the curve; and the largest single file.
+struct OutputEstimate {
+  double total = 0.0, largest = 0.0;
+  std::string largest_file;
+};
+OutputEstimate estimate_output(const Scene& scene, const mesh::HexMesh& mesh);
+// An InputError with the estimate when the file system of 'Output/directory' has less free space than the run will
+// write, or when its largest file is above the job's file-size limit.
+void check_output_limits(const Scene& scene, const OutputEstimate& estimate);
 
 }  // namespace spatula::app

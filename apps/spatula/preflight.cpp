@@ -1,6 +1,7 @@
 #include "preflight.hpp"
 
 #include "checkpoint.hpp"
+#include "resource_limits.hpp"
 #include "mesh/mesh_summary.hpp"
 #include "io/output_directory.hpp"
 #include "parameters/parameter_validation.hpp"
@@ -27,17 +28,6 @@ std::string gigabytes(double bytes)
   return out.str();
 }
 
-double available_memory()
-{
-  std::ifstream meminfo("/proc/meminfo");
-  std::string key;
-  double kilobytes = 0.0;
-  std::string unit;
-  while (meminfo >> key >> kilobytes >> unit)
-    if (key == "MemAvailable:") return kilobytes * 1024.0;
-  return 0.0;   // unknown: no check
-}
-
 // Peak memory for n unknowns. Matrix: ~81 entries per row (27 neighbouring nodes x 3), held by Tpetra (values and
 // indices, owned and overlapping rows) and copied once by the solver: about 2.5 x 12 bytes per entry. Direct solver
 // (MUMPS LDL^T): the fine mesh's measured 3.5 GB at 318,087 unknowns, grown as n^(4/3). ILU(k): k + 2 matrices.
@@ -54,7 +44,7 @@ struct MemoryModel {
   }
 };
 
-constexpr double usable_memory = 0.9;   // of MemAvailable
+constexpr double usable_memory = 0.9;   // of the tightest memory limit
 
 // A scene that jumps past instabilities factors the tangent with MUMPS LDL^T at every jump (the descent needs its
 // inertia) whatever the linear solver: an iterative solver then saves no peak memory.
@@ -75,7 +65,7 @@ double solver_bytes(solvers::LinearSolverType type, const Scene& scene, double u
 solvers::LinearSolverType chosen_solver(const Scene& scene, double unknowns, double available_bytes)
 {
   if (scene.linear_solver.type != solvers::LinearSolverType::automatic) return scene.linear_solver.type;
-  const bool direct_fits = available_bytes <= 0.0 || MemoryModel::direct(unknowns) <= usable_memory * available_bytes;
+  const bool direct_fits = MemoryModel::direct(unknowns) <= usable_memory * available_bytes;
   return direct_fits ? solvers::LinearSolverType::mumps : solvers::LinearSolverType::gmres_amg;
 }
 
@@ -212,7 +202,7 @@ void check_output_directory(const Scene& scene, const std::string& scene_file)
                                  "' before the run could finish: choose another 'Output/directory'");
 }
 
-MemoryEstimate estimate_memory(const Scene& scene, std::int64_t unrefined_nodes, std::int64_t refined_nodes)
+MemoryEstimate estimate_memory(const Scene& scene, std::int64_t unrefined_nodes, std::int64_t refined_nodes, int ranks)
 {
   // nodes(r) = a + b r^2 through r = 1 and 2 (the pad refines in plane, the shaft does not).
   MemoryEstimate estimate;
@@ -221,7 +211,10 @@ MemoryEstimate estimate_memory(const Scene& scene, std::int64_t unrefined_nodes,
   estimate.nodes = static_cast<std::int64_t>(estimate.nodes_at(scene.mesh.refinement_factor));
   estimate.unknowns = 3 * estimate.nodes;
   estimate.matrix_entries = static_cast<std::int64_t>(MemoryModel::entries_per_unknown * estimate.unknowns);
-  estimate.available_bytes = available_memory();
+  const auto limit = tightest(memory_limits(ranks));
+  estimate.available_bytes = limit.bytes;
+  estimate.available_source = limit.source;
+  estimate.available_remedy = limit.remedy;
   estimate.solver = chosen_solver(scene, double(estimate.unknowns), estimate.available_bytes);
   estimate.bytes = solver_bytes(estimate.solver, scene, double(estimate.unknowns));
   return estimate;
@@ -229,14 +222,17 @@ MemoryEstimate estimate_memory(const Scene& scene, std::int64_t unrefined_nodes,
 
 void check_memory(const Scene& scene, const MemoryEstimate& estimate)
 {
-  if (estimate.available_bytes <= 0.0 || estimate.bytes <= usable_memory * estimate.available_bytes) return;
+  if (estimate.bytes <= usable_memory * estimate.available_bytes) return;   // (an unknown limit is infinite)
   const auto& m = scene.mesh;
   std::ostringstream message;
   message << "the mesh ('Mesh/level' = '" << m.level << "', 'Mesh/refinement factor' = " << m.refinement_factor
           << ", 'Mesh/layers' = " << m.layers << ") has about " << estimate.unknowns << " unknowns and needs about "
           << gigabytes(estimate.bytes) << " with 'Linear Solver/type' = '"
           << parameters::name_of(estimate.solver, solvers::linear_solver_names()) << "'; "
-          << gigabytes(estimate.available_bytes) << " available. ";
+          << gigabytes(estimate.available_bytes) << " available (" << estimate.available_source << "). ";
+  if (estimate.available_bytes <= 0.0)   // the libraries alone fill the limit: no mesh fits
+    throw parameters::InputError(message.str() + "Nothing is left for any mesh under this limit: " +
+                                 estimate.available_remedy);
   int fits = 0;
   for (int r = 1; r < m.refinement_factor; ++r)
     if (peak_bytes(scene, 3.0 * estimate.nodes_at(r), estimate.available_bytes) <= usable_memory * estimate.available_bytes)
@@ -252,6 +248,7 @@ void check_memory(const Scene& scene, const MemoryEstimate& estimate)
             << (scene.loading.past_instabilities == analysis::LoadPath::PastFolds::jump
                     ? ": the jumps past instabilities factor with MUMPS all the same" : "") << ")";
   }
+  message << "; or " << estimate.available_remedy;
   throw parameters::InputError(message.str());
 }
 
@@ -274,7 +271,8 @@ mesh::HexMesh make_checked_mesh(const Scene& scene, const geometry::SpatulaShape
   return mesh;
 }
 
-mesh::HexMesh make_mesh_within_memory(const Scene& scene, const geometry::SpatulaShape& shape, MemoryEstimate& estimate)
+mesh::HexMesh make_mesh_within_memory(const Scene& scene, const geometry::SpatulaShape& shape, int ranks,
+                                      MemoryEstimate& estimate)
 {
   auto trial = scene;
   const int requested = scene.mesh.refinement_factor;
@@ -285,7 +283,7 @@ mesh::HexMesh make_mesh_within_memory(const Scene& scene, const geometry::Spatul
     trial.mesh.refinement_factor = 2;
     mesh = make_checked_mesh(trial, shape);
   }
-  estimate = estimate_memory(scene, unrefined_nodes, requested > 1 ? mesh.node_count() : 4 * unrefined_nodes);
+  estimate = estimate_memory(scene, unrefined_nodes, requested > 1 ? mesh.node_count() : 4 * unrefined_nodes, ranks);
   check_memory(scene, estimate);
   return requested > 2 ? make_checked_mesh(scene, shape) : mesh;
 }

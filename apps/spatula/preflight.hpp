@@ -28,15 +28,16 @@ void check_output_directory(const Scene& scene, const std::string& scene_file);
 struct MemoryEstimate {
   std::int64_t nodes = 0, unknowns = 0, matrix_entries = 0;
   double bytes = 0.0;             // peak of the whole run, all ranks together
-  double available_bytes = 0.0;   // MemAvailable of this machine (all ranks are taken to share it)
+  double available_bytes = 0.0;   // the tightest memory limit of the job (resource_limits.hpp), all ranks together
+  std::string available_source, available_remedy;   // which limit that is, and how to raise it
   solvers::LinearSolverType solver = solvers::LinearSolverType::mumps;   // the scene's, or what 'auto' chose
   double fixed_nodes = 0.0, refined_nodes = 0.0;   // nodes at refinement factor r: fixed + refined r^2
   double nodes_at(int r) const { return fixed_nodes + refined_nodes * r * r; }
 };
 // Estimated from the node counts of the scene's mesh at refinement factors 1 and 2 (cheap), extrapolated to the
-// requested refinement, so that a mesh too large for the machine is refused before it is made. The direct solver's share is calibrated on the fine
+// requested refinement, so that a mesh too large for the machine (or the job's limits) is refused before it is made. The direct solver's share is calibrated on the fine
 // mesh's measured peak (docs/performance.md) and grown as unknowns^(4/3) (nested-dissection fill in 3D).
-MemoryEstimate estimate_memory(const Scene& scene, std::int64_t unrefined_nodes, std::int64_t refined_nodes);
+MemoryEstimate estimate_memory(const Scene& scene, std::int64_t unrefined_nodes, std::int64_t refined_nodes, int ranks);
 void check_memory(const Scene& scene, const MemoryEstimate& estimate);
 
 // Meshes the scene's spatula and checks every element (det J > 0 at its Gauss points, not degenerate); a geometry
@@ -45,7 +46,8 @@ void check_memory(const Scene& scene, const MemoryEstimate& estimate);
 mesh::HexMesh make_checked_mesh(const Scene& scene, const geometry::SpatulaShape& shape);
 // The scene's mesh, made only once the memory it needs is known to be there: the meshes at refinement factors 1 and 2
 // first (checked, and the measure of what the requested one needs), then the requested one; `estimate` is filled in.
-mesh::HexMesh make_mesh_within_memory(const Scene& scene, const geometry::SpatulaShape& shape, MemoryEstimate& estimate);
+mesh::HexMesh make_mesh_within_memory(const Scene& scene, const geometry::SpatulaShape& shape, int ranks,
+                                      MemoryEstimate& estimate);
 // Every rank has elements to assemble.
 void check_ranks(const mesh::HexMesh& mesh, const mesh::Partition& partition);
 

@@ -66,6 +66,7 @@ Teuchos::ParameterList valid_scene_parameters()
   solvers::NewtonParameters::declare(parameters::declare_sublist(valid, "Nonlinear Solver", "Newton's method"));
   contact::AdhesionParameters::declare(
       parameters::declare_sublist(valid, "Adhesion", "van der Waals adhesion to a rigid substrate"));
+  JobParameters::declare(parameters::declare_sublist(valid, "Job", "threads, and the end of a run after a signal"));
   return valid;
 }
 
@@ -80,6 +81,7 @@ Scene read_scene(Teuchos::ParameterList user)
   scene.loading = LoadingParameters::from(user.sublist("Loading"));
   scene.linear_solver = solvers::LinearSolverParameters::from(user.sublist("Linear Solver"));
   scene.newton = solvers::NewtonParameters::from(user.sublist("Nonlinear Solver"));
+  scene.job = JobParameters::from(user.sublist("Job"));
   scene.adhesion = contact::AdhesionParameters::from(user.sublist("Adhesion"), scene.material.young);
   if (scene.loading.free_slide && scene.adhesion.settings.law != "stiction")
     throw parameters::InputError("parameter 'Loading/free slide during lift' = true needs 'Adhesion/law' = 'stiction' "

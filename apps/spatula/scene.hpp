@@ -2,6 +2,7 @@
 // A scene: the whole XML input of one run, validated against the parameters every package declares.
 #include "contact/adhesion.hpp"
 #include "discretization/discrete_system.hpp"
+#include "job.hpp"
 #include "loading.hpp"
 #include "solvers/newton.hpp"
 #include "mesh/spatula_mesher.hpp"
@@ -34,6 +35,7 @@ struct Scene {
   LoadingParameters loading;
   solvers::LinearSolverParameters linear_solver;
   solvers::NewtonParameters newton;
+  JobParameters job;
   bool resume = false;                // go on with a stopped run (command line --resume): restart file = its state
   Teuchos::ParameterList validated;   // the full list with defaults filled in (echoed to the output)
 };
@@ -42,7 +44,7 @@ struct Scene {
 discretization::Enrichment enrichment_of(const Scene& scene);
 
 // All valid keys with defaults and docs, in sublists "Geometry", "Mesh", "Output", "Material", "Loading",
-// "Linear Solver", "Nonlinear Solver", "Adhesion".
+// "Linear Solver", "Nonlinear Solver", "Adhesion", "Job".
 Teuchos::ParameterList valid_scene_parameters();
 // Validates a user's list (throws parameters::InputError) and reads it into typed parameters.
 Scene read_scene(Teuchos::ParameterList user);

@@ -5,6 +5,7 @@
 #include "spectrum_output.hpp"
 
 #include "io/checked_write.hpp"
+#include "solvers/out_of_memory.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_TimeMonitor.hpp>
@@ -177,6 +178,7 @@ private:
   double peak_moment_ = 0.0, peak_force_ = 0.0;
   clock::time_point last_checkpoint_ = clock::now();
   bool balance_warned_ = false;
+  bool out_of_memory_ = false;   // the load path stopped because an allocation failed (not a detachment)
 };
 
 discretization::SystemOptions system_options(const Scene& scene)
@@ -262,6 +264,7 @@ void Run::write_last_state(const Vector& x, const analysis::LoadPoint& p)
   if (jump) record.seconds = path_.elapsed_seconds();   // the descent's time so far counts too
   write_checkpoint(checkpoint_file(), last_state_label, *system_, x, p, path_stage_, scene_, record, anchors_.get(),
                    jump);
+  note_checkpoint_written();
 }
 
 void Run::write_checkpoint_at(double theta_y)
@@ -448,8 +451,16 @@ std::optional<analysis::Failure> Run::follow_load_path(int& interrupted_by)
       failure = path_.advance(Master::lift, target, control, loading.lift_steps, 1.0, on_point);
     }
   } catch (const Interrupted& signal) {
+    cancel_watchdog();   // the converged state to stop at is reached
     interrupted_by = signal.signal;
     if (root_) out_ << "spatula: " << signal.what() << " at step " << path_.last().step << "; stopping\n";
+  } catch (const solvers::OutOfMemory& error) {
+    if (!error.collective()) throw;   // one rank alone: the others wait in a collective call (main ends them all)
+    out_of_memory_ = true;
+    const auto& last = path_.last();
+    failure = analysis::Failure{last.step + 1, load_of(last), 0.0,
+                                std::string(error.what()) + "; the job allows less memory than this mesh and "
+                                "solver need: give it more, or choose a coarser mesh"};
   }
   return failure;
 }
@@ -457,7 +468,7 @@ std::optional<analysis::Failure> Run::follow_load_path(int& interrupted_by)
 std::optional<Stop> Run::finish(std::optional<analysis::Failure> failure, int interrupted_by)
 {
   // No equilibrium beyond a state where most of the pad has let go: that is the detachment.
-  if (!interrupted_by && failure && options_.contact && released_fraction(path_.last()) > 0.5) {
+  if (!interrupted_by && failure && !out_of_memory_ && options_.contact && released_fraction(path_.last()) > 0.5) {
     if (root_)
       out_ << "detachment: no equilibrium beyond " << stage_name(stage_) << " = " << failure->load << " ("
            << failure->reason << ")\n";
@@ -492,7 +503,7 @@ std::optional<Stop> Run::finish(std::optional<analysis::Failure> failure, int in
   Stop stop;
   stop.signal = interrupted_by;
   stop.stage = stage_;
-  if (failure && path_.jump_in_progress())   // a descent stopped at its iteration limit
+  if (failure && !out_of_memory_ && path_.jump_in_progress())   // a descent stopped at its iteration limit
     failure->reason += "; the descent's state is checkpointed with the last state: a restart from it ('Loading/restart "
                        "from' = 'last state') with a larger 'Loading/Jump/maximum iterations' goes on from there";
   if (failure) stop.failure = *failure;

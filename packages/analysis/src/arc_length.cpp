@@ -116,6 +116,9 @@ std::optional<Failure> LoadPath::arc_length(Master controlled, double resume_abo
   std::string what;
   try {
     status = loca_stepper.run();
+  } catch (const std::bad_alloc&) {
+    LOCA::destroyGlobalData(global);
+    throw;   // not a stop of the continuation: see solvers/out_of_memory.hpp
   } catch (const std::exception& error) {
     what = error.what();
   }

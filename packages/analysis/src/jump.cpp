@@ -62,6 +62,18 @@ struct LoadPath::Descent {
   }
   // A stiffer shift (the tangent was indefinite, or Pi did not decrease along its direction).
   void shift_more(double growth) { eta = eta == 0.0 ? 1e-6 * scale : growth * eta; }
+  // A shift this far above the tangent's mean diagonal leaves a steepest descent with steps of rounding size: no
+  // tangent of a body that is still connected is that indefinite, so the descent stops instead of growing it further.
+  static constexpr double largest_shift = 1e10;
+  bool shift_exhausted() const { return eta > largest_shift * scale; }
+  std::string exhausted_reason() const
+  {
+    std::ostringstream reason;
+    reason << "the energy descent's shift passed " << largest_shift << " x the tangent's mean diagonal at iteration "
+           << iteration << " (" << indefinite << " shifts for an indefinite tangent, " << no_decrease
+           << " for no decrease of Pi): no descent direction exists at this state";
+    return reason.str();
+  }
 
   void row(bool tables, int negative, double residual_norm, double step, double energy)
   {
@@ -123,8 +135,8 @@ LoadPath::DescentPoint LoadPath::descent_point(const Vector& x, Descent& d, bool
     try {
       descent_solver().factor(*system.jacobian());
       point.negative_pivots = descent_solver().statistics().negative_pivots;
-    } catch (const std::exception&) {
-      point.negative_pivots = 1;   // singular: treat like indefinite
+    } catch (const solvers::UnusableMatrix&) {
+      point.negative_pivots = 1;   // singular: treat like indefinite (any other failure is not the matrix's: it ends the run)
     }
   }
   return point;
@@ -172,6 +184,7 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
       d.row(tables_, point.negative_pivots, point.residual, 0.0, point.energy);
       ++d.indefinite;
       d.shift_more(jump_.shift_growth);
+      if (d.shift_exhausted()) return d.exhausted_reason();
       continue;
     }
     // Near a stable minimum (positive definite tangent, small gradient): plain Newton finishes. The energy alone
@@ -219,6 +232,7 @@ std::optional<std::string> LoadPath::descend_to_small_gradient(Vector& x, Descen
     if (best_step == 0.0) {   // no decrease along this direction: stiffen the shift
       ++d.no_decrease;
       d.shift_more(jump_.shift_growth);
+      if (d.shift_exhausted()) return d.exhausted_reason();
       continue;
     }
     ++d.accepted;

@@ -1,6 +1,7 @@
 #include "solvers/mumps_solver.hpp"
 
 #include "parameters/parameter_validation.hpp"
+#include "solvers/out_of_memory.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_DefaultMpiComm.hpp>
@@ -101,9 +102,24 @@ std::string describe_error(const DMUMPS_STRUC_C& id)
 {
   const int code = infog(id, 1), detail = infog(id, 2);
   std::string what = "MUMPS error INFOG(1) = " + std::to_string(code) + ", INFOG(2) = " + std::to_string(detail);
-  if (code == -10) what += " (numerically singular matrix)";
-  if (code == -9 || code == -8 || code == -13) what += " (out of memory; raise 'memory relaxation')";
+  if (code == -9 || code == -8) what += " (MUMPS' workspace estimate too small; raise 'memory relaxation')";
   return what;
+}
+
+// Throws for a failed phase (INFOG(1) < 0), the same on every rank (MUMPS reports each rank's error to all):
+// OutOfMemory where the system refused MUMPS an allocation (-13: INFOG(2) scalars, negative in millions),
+// UnusableMatrix where the matrix is the cause (-10, numerically singular), a runtime_error otherwise.
+void check(const DMUMPS_STRUC_C& id, const char* phase)
+{
+  const int code = infog(id, 1);
+  if (code >= 0) return;
+  if (code == -13) {
+    const double items = infog(id, 2) < 0 ? -1e6 * infog(id, 2) : double(infog(id, 2));
+    throw OutOfMemory(std::string("MUMPS ") + phase + " workspace (" + describe_error(id) + ")", 8.0 * items, true);
+  }
+  const std::string what = std::string("MUMPS ") + phase + " failed: " + describe_error(id);
+  if (code == -10) throw UnusableMatrix(what + " (numerically singular matrix)");
+  throw std::runtime_error(what);
 }
 
 // MUMPS allocates its factor workspace (about 280 MB on the medium mesh) at every factorization and frees it after.
@@ -223,7 +239,7 @@ struct MumpsSolver::Implementation {
     collect(matrix, pattern);
     int finite = std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
     Teuchos::reduceAll(*map->getComm(), Teuchos::REDUCE_MIN, finite, Teuchos::outArg(finite));
-    if (!finite) throw std::runtime_error("MUMPS factorization refused: the tangent has non-finite entries");
+    if (!finite) throw UnusableMatrix("MUMPS factorization refused: the tangent has non-finite entries");
     id.n = static_cast<int>(map->getGlobalNumElements());
     id.nnz_loc = static_cast<MUMPS_INT8>(rows.size());
     id.irn_loc = rows.data();
@@ -234,7 +250,7 @@ struct MumpsSolver::Implementation {
       const auto start = std::chrono::steady_clock::now();
       id.job = 1;
       dmumps_c(&id);
-      if (infog(id, 1) < 0) throw std::runtime_error("MUMPS analysis failed: " + describe_error(id));
+      check(id, "analysis");
       statistics.ordering_used = ordering_name(infog(id, 7));
       const MumpsOrdering asked = parameters.ordering;
       if (asked != MumpsOrdering::automatic && infog(id, 7) != ordering_codes[static_cast<int>(asked)])
@@ -258,7 +274,7 @@ struct MumpsSolver::Implementation {
       icntl(id, 14) = 2 * std::max(icntl(id, 14), 20);
       ++statistics.workspace_increases;
     }
-    if (infog(id, 1) < 0) throw std::runtime_error("MUMPS factorization failed: " + describe_error(id));
+    check(id, "factorization");
     ++statistics.factorizations;
     statistics.applications_since_factor = 0;
     statistics.last_factorization_seconds = seconds_since(start);
@@ -293,7 +309,7 @@ struct MumpsSolver::Implementation {
     mutable_id.rhs = is_root ? right_hand_side.data() : nullptr;
     mutable_id.job = 3;
     dmumps_c(&mutable_id);
-    if (infog(id, 1) < 0) throw std::runtime_error("MUMPS solve failed: " + describe_error(id));
+    check(id, "solve");
     if (is_root)
       for (std::size_t v = 0; v < vectors; ++v) {
         auto data = root.getDataNonConst(v);

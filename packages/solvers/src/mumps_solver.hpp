@@ -11,6 +11,7 @@
 #include <Teuchos_ParameterList.hpp>
 
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,13 @@ using discretization::CrsMatrix;
 using discretization::Map;
 using discretization::MultiVector;
 using discretization::Operator;
+
+// A factorization refused because of the matrix itself (numerically singular, non-finite entries): the one failure a
+// caller may answer by changing the matrix (a shift). Any other failure (solvers::OutOfMemory, MUMPS' own errors) is not.
+class UnusableMatrix : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
 
 // Fill-reducing orderings MUMPS may offer (ICNTL(7)); which are built in depends on the MUMPS library linked.
 enum class MumpsOrdering { automatic, amd, amf, qamd, pord, scotch, metis };

@@ -459,6 +459,8 @@ NewtonResult NewtonSolver::solve(discretization::Vector& x, std::ostream* table,
   NOX::StatusTest::StatusType status = NOX::StatusTest::Unconverged;
   try {
     status = solver->solve();
+  } catch (const std::bad_alloc&) {
+    throw;   // an allocation failure is not a failed step: no shorter increment would need less memory
   } catch (const std::exception& error) {
     result.failure = std::string("exception in the Newton iteration: ") + error.what();
     return result;
