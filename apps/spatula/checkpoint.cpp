@@ -133,7 +133,7 @@ void write_checkpoint(const std::string& file, const std::string& label, const d
                                                      jump->scale, static_cast<double>(jump->iterations)});
     }
     out.write(group + "/history", history(point));
-    out.write(group + "/stage", std::vector<double>{stage.lifting ? 1.0 : 0.0, stage.lift_start});
+    out.write(group + "/stage", std::vector<double>{static_cast<double>(stage.index), stage.start});
     out.write(group + "/signature", values(signature(system.nodes(), scene)));
     out.write(group + "/material", values(material_signature(scene)));
     out.write(group + "/run", std::vector<double>{record.initial_internal_energy, record.initial_contact_energy,
@@ -266,8 +266,8 @@ analysis::LoadPoint read_checkpoint(const Scene& scene, const discretization::Di
   stage = PathStage{};
   if (in.exists(group + "/stage")) {
     const auto s = in.read_doubles(group + "/stage");
-    stage.lifting = s.at(0) != 0.0;
-    stage.lift_start = s.at(1);
+    stage.index = static_cast<int>(s.at(0));
+    stage.start = s.at(1);
   }
   return point;
 }

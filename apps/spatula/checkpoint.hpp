@@ -26,10 +26,11 @@ inline const char* last_state_label = "last state";
 // The label a scene restarts from ('Loading/restart from', 'Loading/restart theta_y').
 std::string restart_label(const LoadingParameters& loading);
 
-// Where on its path a checkpointed state was: in the rotation, or in the lift that began at `lift_start`.
+// Where on its path a checkpointed state was: in the stage of this index ('Loading/Stages', or 0 the rotation and 1
+// the lift of the fixed types), which began at `start` (its moved motion there, in the stage's unit: deg or nm).
 struct PathStage {
-  bool lifting = false;
-  double lift_start = 0.0;   // u_z where the lift began [nm]
+  int index = 0;
+  double start = 0.0;
 };
 
 // What a run needs, beyond the state, to go on as if it had never stopped (`spatula --resume`): the energies

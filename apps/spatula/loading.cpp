@@ -16,9 +16,35 @@ const std::vector<std::string>& instability_methods()
 
 const std::vector<std::string>& loading_types()
 {
-  static const std::vector<std::string> types = {"none", "rotation", "lift"};
+  static const std::vector<std::string> types = {"none", "rotation", "lift", "stages"};
   return types;
 }
+
+namespace {
+
+// The stages of 'Loading/type' = rotation (the rotation to theta_y) and lift (then the lift to 'final lift').
+std::vector<Stage> fixed_stages(const LoadingParameters& p)
+{
+  if (p.type == LoadingType::none) return {};
+  Stage rotation;
+  rotation.name = "rotation";
+  rotation.kind = StageKind::rotate;
+  rotation.target = p.theta_y;
+  rotation.steps = p.rotation_steps;
+  rotation.free_lift = p.free_lift;
+  rotation.checkpoints = true;
+  if (p.type == LoadingType::rotation) return {rotation};
+  Stage lift;
+  lift.name = "lift";
+  lift.kind = StageKind::lift;
+  lift.target = p.final_lift;
+  lift.relative = p.lift_relative;
+  lift.steps = p.lift_steps;
+  lift.free_slide = p.free_slide;
+  return {rotation, lift};
+}
+
+}  // namespace
 
 void LoadingParameters::declare(Teuchos::ParameterList& loading)
 {
@@ -26,7 +52,8 @@ void LoadingParameters::declare(Teuchos::ParameterList& loading)
   using parameters::Range;
   parameters::declare_string(loading, "type", parameters::name_of(d.type, loading_types()),
                              "none: mesh only; rotation: rotate the end face to theta_y; lift: rotate to theta_y, "
-                             "then raise the face to 'final lift'",
+                             "then raise the face to 'final lift'; stages: the stages of 'Stages' (then theta_y, final "
+                             "lift, the 'during' keys and the Rotation and Lift Steps are not used)",
                              loading_types());
   parameters::declare_double(loading, "theta_y", d.theta_y,
                              "shaft inclination to reach (rotation) or hold (lift) [deg]",
@@ -90,6 +117,7 @@ void LoadingParameters::declare(Teuchos::ParameterList& loading)
                              "crossed a snap (Newton landed on another branch) and is cut back, or at the smallest "
                              "increment counted as a jump; 0 switches the check off (scenes with adhesion only)",
                              Range::closed(0.0, 1.0));
+  declare_stages(loading);
   auto& arc = parameters::declare_sublist(loading, "Arc Length", "LOCA arc-length steps (scaled norm)");
   const auto& a = d.arc_length_steps;
   parameters::declare_double(arc, "initial", a.initial, "first step", Range::positive());
@@ -147,6 +175,7 @@ LoadingParameters LoadingParameters::from(const Teuchos::ParameterList& loading)
   p.arc_length_steps.minimum = arc.get<double>("minimum");
   p.arc_length_steps.maximum = arc.get<double>("maximum");
   p.arc_length_steps.maximum_steps = arc.get<int>("maximum steps");
+  p.stages = p.type == LoadingType::stages ? read_stages(loading.sublist("Stages")) : fixed_stages(p);
   return p;
 }
 

@@ -1,9 +1,10 @@
 #pragma once
-// What a scene does with the spatula: mesh only, peel by rotating the end face, or pull off by lifting it at a
-// fixed inclination (after rotating there). "Loading/type" is checked against the fixed list loading_types()
-// ("none", "rotation", "lift"); there is no registry: main.cpp runs no load path for "none", and run_simulation
-// (simulation.cpp) rotates to theta_y for both other types (unless it restarts from a state already in the lift),
-// then raises the face if the type is "lift".
+// What a scene does with the spatula: mesh only, or follow a load path of stages (stages.hpp). "Loading/type" is
+// checked against loading_types() ("none", "rotation", "lift", "stages"): 'rotation' rotates the end face to theta_y
+// (one stage), 'lift' rotates there and then raises the face to 'final lift' (two stages), 'stages' runs
+// 'Loading/Stages'. main.cpp runs no load path for "none".
+#include "stages.hpp"
+
 #include "analysis/load_stepping.hpp"
 
 #include <Teuchos_ParameterList.hpp>
@@ -13,7 +14,7 @@
 
 namespace spatula::app {
 
-enum class LoadingType { none, rotation, lift };   // in the order of loading_types()
+enum class LoadingType { none, rotation, lift, stages };   // in the order of loading_types()
 
 struct LoadingParameters {
   LoadingType type = LoadingType::none;
@@ -35,6 +36,7 @@ struct LoadingParameters {
   analysis::JumpParameters jump;
   double step_balance_tolerance = 1e-4;   // over Pi_c0 (JumpParameters holds it in nN nm)
   analysis::ArcLengthParameters arc_length_steps;
+  std::vector<Stage> stages;              // the load path: 'Loading/Stages', or the fixed type's stages
 
   static void declare(Teuchos::ParameterList& loading);
   static LoadingParameters from(const Teuchos::ParameterList& loading);

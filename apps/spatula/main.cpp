@@ -176,8 +176,9 @@ void write_failure_note(const spatula::io::OutputDirectory& directory, const spa
   const auto& failure = stop.failure;
   note << "spatula stopped before the end of its load path (exit code " << exit_code << ").\n"
        << "why: " << failure.reason << "\n"
-       << "where: step " << failure.step << ", " << spatula::app::stage_name(stop.stage) << ", load " << failure.load
-       << (stop.stage == spatula::discretization::Master::lift ? " nm (u_z)" : " (deg)");
+       << "where: step " << failure.step << ", stage '" << stop.stage << "', load " << failure.load
+       << (stop.moved == spatula::discretization::Master::lift    ? " nm (u_z)"
+           : stop.moved == spatula::discretization::Master::slide ? " nm (u_x)" : " (deg)");
   if (failure.smallest_increment > 0.0)
     note << ", not reached after cutting the increment to " << failure.smallest_increment;
   note << "\nresults up to the last converged state: curve.csv, mesh_states.xmf (this directory)\n";
@@ -252,7 +253,7 @@ void leave_stopped_run(spatula::io::OutputDirectory& directory, const spatula::a
   write_failure_note(directory, stop, exit_code);
   directory.abandon();
   std::cerr << "spatula: " << (stop.signal ? "interrupted" : "solver failure") << " at step " << stop.failure.step
-            << ", " << spatula::app::stage_name(stop.stage) << " = " << stop.failure.load << ": " << stop.failure.reason
+            << ", " << stop.stage << " = " << stop.failure.load << ": " << stop.failure.reason
             << "\nspatula: results up to the last converged state, a checkpoint to go on from and FAILURE.txt (how) "
             << "are in " << directory.incomplete_path() << "/\n";
 }

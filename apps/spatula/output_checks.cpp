@@ -83,9 +83,11 @@ OutputEstimate estimate_output(const Scene& scene, const mesh::HexMesh& mesh)
 {
   const double nodes = double(mesh.node_count()), elements = double(mesh.element_count());
   const auto& loading = scene.loading;
-  double states = 1.0;
+  double states = 1.0;   // the rotation's range from the undeformed state for the fixed types (as they were estimated)
   if (loading.type == LoadingType::rotation) states = states_over(loading.theta_y, loading.rotation_steps);
   if (loading.type == LoadingType::lift) states = states_over(loading.final_lift, loading.lift_steps);
+  if (loading.type == LoadingType::stages)
+    for (const auto& stage : loading.stages) states += states_over(stage.target, stage.steps);
   // HDF5 and XDMF: the mesh (coordinates, connectivity, parts, node and side sets) and per field state the deformed
   // coordinates, the displacement and up to one more node vector and two cell scalars, each dataset with a few kB
   // of metadata; the XDMF text per state.

@@ -1,10 +1,12 @@
 #include "simulation.hpp"
 
 #include "checkpoint.hpp"
+#include "curve_writer.hpp"
 #include "interruption.hpp"
 #include "spectrum_output.hpp"
 
 #include "io/checked_write.hpp"
+#include "parameters/parameter_validation.hpp"
 #include "solvers/out_of_memory.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
@@ -23,90 +25,6 @@ namespace {
 
 constexpr double pi = 3.14159265358979323846;
 constexpr double degree = pi / 180.0;
-
-// curve.csv: one row per converged state, full-spatula values (the model is half of it).
-// Energies in the paper's form: Pi_sa = Pi_c - Pi_c(start) (= Pi_c0 + Pi_c for the exact law), all over
-// Pi_c0 = A_c w_adh; the balance error |Pi_ext - Pi_int - Pi_sa| / Pi_c0 (Pi_c0 = 1 without adhesion).
-class CurveWriter {
-public:
-  // Energies are counted from a baseline state: the undeformed spatula, or (rough substrates) the pad pressed
-  // onto the substrate, whose internal and adhesion energies are given here.
-  // `resume_after`: go on with the curve of a stopped run, keeping its rows up to that step (-1: a new curve).
-  CurveWriter(const std::string& file, double young, double reference_energy, double initial_internal_energy,
-              double initial_contact_energy, int resume_after = -1)
-      : file_(file), young_(young), reference_(reference_energy), initial_internal_(initial_internal_energy),
-        initial_contact_(initial_contact_energy)
-  {
-    if (resume_after >= 0) {
-      keep_rows_up_to(file, resume_after);
-      written_ = static_cast<std::streamoff>(std::filesystem::file_size(file));
-      out_.open(file, std::ios::app);
-      io::check_written(out_, file_);
-      out_ << std::setprecision(10);
-      return;
-    }
-    out_.open(file);
-    out_ << "step,stage,theta_y_deg,u_z_nm,M_y_nNnm,M_y_per_ER0^3,P_z_nN,P_z_per_ER0^2,Pi_int_1e-18J,"
-            "Pi_ext_1e-18J,Pi_c_1e-18J,Pi_sa_1e-18J,Pi_ext_per_Pi_c0,Pi_int_per_Pi_c0,Pi_sa_per_Pi_c0,"
-            "dissipated_per_Pi_c0,balance_error_per_Pi_c0,after_jump,contact_faces_active,contact_faces_skipped,"
-            "newton_iterations,negative_pivots,wall_s,u_x_nm\n";
-    commit_row();
-    out_ << std::setprecision(10);
-  }
-  double stored_adhesion(const analysis::LoadPoint& p) const { return 2 * (p.contact_energy - initial_contact_); }
-  double internal(const analysis::LoadPoint& p) const { return 2 * (p.internal_energy - initial_internal_); }
-  // |Pi_ext - Pi_int - Pi_sa - D| / Pi_c0 with D the energy the jumps past instabilities released (dissipated).
-  double balance_error(const analysis::LoadPoint& p) const
-  {
-    return std::abs(2 * p.external_work - internal(p) - stored_adhesion(p) - 2 * p.dissipated) / reference_;
-  }
-  void write(const analysis::LoadPoint& p, const char* stage, double theta_s)
-  {
-    const double sa = stored_adhesion(p);
-    out_ << p.step << "," << stage << "," << (theta_s + p.rotation) / degree << "," << p.lift << ","
-         << 2 * p.moment << "," << 2 * p.moment / young_ << "," << 2 * p.force << "," << 2 * p.force / young_ << ","
-         << internal(p) << "," << 2 * p.external_work << "," << 2 * p.contact_energy << "," << sa << ","
-         << 2 * p.external_work / reference_ << "," << internal(p) / reference_ << "," << sa / reference_
-         << "," << 2 * p.dissipated / reference_ << "," << balance_error(p) << "," << (p.after_jump ? 1 : 0) << ","
-         << p.active_faces << "," << p.skipped_faces << ","
-         << p.newton_iterations << "," << p.negative_pivots << "," << p.seconds << "," << p.slide << "\n";
-    commit_row();
-  }
-
-private:
-  // The rows written so far reach the file, or the curve is cut back to its last whole row (a full disk leaves a
-  // readable curve up to the last state that fitted) and the write failure is thrown.
-  void commit_row()
-  {
-    try {
-      io::check_written(out_, file_);
-      written_ = out_.tellp();   // the end of the file once a row has been written (opened to append)
-    } catch (...) {
-      std::error_code ignored;
-      if (written_ >= 0) std::filesystem::resize_file(file_, static_cast<std::uintmax_t>(written_), ignored);
-      throw;
-    }
-  }
-
-  // Rewrites the curve with its header and the rows of steps up to `last_step` (a stopped run's rows past its
-  // checkpoint are computed again).
-  static void keep_rows_up_to(const std::string& file, int last_step)
-  {
-    std::ifstream in(file);
-    if (!in) throw std::runtime_error("cannot resume: '" + file + "' is missing");
-    std::string line, kept;
-    for (bool header = true; std::getline(in, line); header = false)
-      if (header || (!line.empty() && std::stoi(line.substr(0, line.find(','))) <= last_step)) kept += line + "\n";
-    in.close();
-    io::write_text_file(file + ".writing", kept);
-    io::rename_path(file + ".writing", file);
-  }
-
-  std::string file_;
-  std::ofstream out_;
-  std::streamoff written_ = -1;   // bytes of the curve's whole rows in the file
-  double young_, reference_, initial_internal_, initial_contact_;
-};
 
 // One run of a scene: the distributed system, its solvers and load path, and everything written along the way
 // (curve rows, progress lines, fields, checkpoints). run_simulation calls its phases in order.
@@ -141,9 +59,9 @@ private:
   RunRecord record_at(const analysis::LoadPoint& p) const;   // what a resumed run needs besides the state at p
   void write_last_state(const Vector& x, const analysis::LoadPoint& p);   // collective
   void write_checkpoint_at(double theta_y);                              // collective
-  double load_of(const analysis::LoadPoint& p) const   // theta_y [deg] in the rotation, u_z [nm] in the lift
+  double load_of(const analysis::LoadPoint& p) const   // the current stage's motion: theta_y [deg], u_z or u_x [nm]
   {
-    return stage_ == Master::rotation ? (theta_s_ + p.rotation) / degree : p.lift;
+    return motion_of(p, stage().master());
   }
   double released_fraction(const analysis::LoadPoint& p) const
   {
@@ -169,8 +87,17 @@ private:
   double reference_energy_ = 1.0;   // Pi_c0 = A_c w_adh of the full spatula (1 without adhesion)
   std::unique_ptr<CurveWriter> curve_;
   std::unique_ptr<SpectrumOutput> spectrum_;   // Output/tangent spectrum
-  Master stage_ = Master::rotation;
-  PathStage path_stage_;   // where the path is: rotation, or lift from where
+  const Stage& stage() const { return scene_.loading.stages.at(static_cast<std::size_t>(path_stage_.index)); }
+  // A motion of the end face at p, in its stage's unit: theta_y [deg], u_z or u_x [nm].
+  double motion_of(const analysis::LoadPoint& p, Master motion) const
+  {
+    return motion == Master::rotation ? (theta_s_ + p.rotation) / degree : motion == Master::lift ? p.lift : p.slide;
+  }
+  // One stage to its target (a rotation stopping at each checkpoint inclination on the way): a failure, or
+  // `detached` set where the spatula let go.
+  std::optional<analysis::Failure> follow_stage(const Stage& stage, double target, bool& detached);
+  PathStage path_stage_;   // where the path is: which stage, begun where
+  double peak_slide_ = 0.0;   // the largest |X force| of a slide stage (not checkpointed)
   Teuchos::RCP<Vector> anchors_;   // the state the stiction anchors were set at ('restart state'), kept in checkpoints
   // The energies the curve counts from (the undeformed spatula, or the pad pressed onto a rough substrate) and the
   // peaks the detachment test compares with: kept in every checkpoint, so that a resumed run goes on with them.
@@ -236,7 +163,11 @@ bool Run::detached(const analysis::LoadPoint& p)
 {
   peak_moment_ = std::max(peak_moment_, p.moment);
   peak_force_ = std::max(peak_force_, p.force);
-  const bool collapsed = stage_ == Master::rotation ? p.moment < 0.01 * peak_moment_ : p.force < 0.01 * peak_force_;
+  peak_slide_ = std::max(peak_slide_, std::abs(p.slide_force));
+  const Master moved = stage().master();
+  const bool collapsed = moved == Master::rotation ? p.moment < 0.01 * peak_moment_
+                         : moved == Master::lift  ? p.force < 0.01 * peak_force_
+                                                  : std::abs(p.slide_force) < 0.01 * peak_slide_;
   return collapsed && released_fraction(p) > 0.5;
 }
 
@@ -278,7 +209,7 @@ void Run::print_step(const analysis::LoadPoint& p)
 {
   const std::ios_base::fmtflags flags = out_.flags();
   const std::streamsize precision = out_.precision();
-  out_ << "step " << std::setw(4) << p.step << "  " << stage_name(stage_) << "  theta_y " << std::fixed
+  out_ << "step " << std::setw(4) << p.step << "  " << stage().name << "  theta_y " << std::fixed
        << std::setprecision(3) << std::setw(8) << (theta_s_ + p.rotation) / degree << " deg  u_z " << std::setw(9)
        << p.lift << " nm  M_y " << std::setprecision(4) << std::setw(10) << 2 * p.moment << " nN nm  P_z "
        << std::setw(9) << 2 * p.force << " nN  Pi_int " << std::setw(9) << curve_->internal(p);
@@ -320,14 +251,14 @@ void Run::checkpoint_if_due(const analysis::LoadPoint& p, const Vector& x)
 void Run::on_point(const analysis::LoadPoint& p, const Vector& x)
 {
   if (root_) {
-    curve_->write(p, stage_name(stage_), theta_s_);
+    curve_->write(p, stage().name, theta_s_);
     print_step(p);
   }
   if (scene_.output.tangent_spectrum > 0) {
     if (!spectrum_)
       spectrum_ = std::make_unique<SpectrumOutput>(*system_, scene_.linear_solver.mumps, scene_.output.tangent_spectrum,
                                                    root_ && directory_ ? directory_->file("spectrum.csv") : "");
-    spectrum_->write(p, stage_name(stage_), load_of(p), x);
+    spectrum_->write(p, stage().name.c_str(), load_of(p), x);
   }
   const int interval = scene_.output.field_interval;
   if (interval > 0 && p.step % interval == 0) write_fields(x, load_of(p));
@@ -363,11 +294,11 @@ std::optional<Stop> Run::press_onto_rough_substrate()
   auto guess = system_->create_vector();
   system_->set_displacements(*guess, u);
   const auto failure =
-      path_.equilibrate(*guess, analysis::LoadPath::spatula_control(Master::rotation, scene_.loading.free_lift));
+      path_.equilibrate(*guess, scene_.loading.stages.front().control());
   if (failure) {   // before any load: the stage is the rotation's start, the reason says what failed
     auto pressing = *failure;
     pressing.reason = "pressing the pad onto the rough substrate: " + pressing.reason;
-    return Stop{pressing, 0, false, Master::rotation};
+    return Stop{pressing, 0, false, scene_.loading.stages.front().name, scene_.loading.stages.front().master()};
   }
   if (root_) out_ << "pad pressed onto the rough substrate (z0 = " << adhesion.rough.z0 << " nm): equilibrium found\n";
   initial_contact_ = path_.last().contact_energy;   // the energies count from this state
@@ -400,55 +331,48 @@ void Run::start()
       history.step_control = record.step_control;
     }
     path_.restart(*x, history, scene_.resume);
-    if (path_stage_.lifting) stage_ = Master::lift;
+    if (path_stage_.index < 0 || path_stage_.index >= static_cast<int>(loading.stages.size()))
+      throw parameters::InputError("'Loading/restart file' = '" + loading.restart_file + "': its state is in stage " +
+                                   std::to_string(path_stage_.index + 1) + " of its path, but this scene has " +
+                                   std::to_string(loading.stages.size()) + " stage(s)");
     if (root_)
       out_ << "restart from '" << restart_label(loading) << "' of " << loading.restart_file << " (step "
-           << history.step << ", u_z " << history.lift << " nm" << (path_stage_.lifting ? ", in the lift" : "") << ")"
+           << history.step << ", u_z " << history.lift << " nm"
+           << (path_stage_.index > 0 ? ", in the " + stage().name : std::string()) << ")"
            << (anchor ? "; stiction anchors set at this state" : "") << "\n";
     if (auto jump = read_jump_in_progress(scene_, *system_)) {
       if (root_)
-        out_ << "  it was inside a jump past an instability (" << stage_name(jump->controlled) << " = "
+        out_ << "  it was inside a jump past an instability (" << motion_name(jump->controlled) << " = "
              << (jump->controlled == Master::rotation ? (theta_s_ + jump->value) / degree : jump->value)
              << ", energy descent at iteration " << jump->iterations << ")\n";
       path_.resume_jump(std::move(*jump));
     }
+  } else {   // the first stage begins at the start
+    path_stage_ = PathStage{0, motion_of(path_.last(), loading.stages.front().master())};
   }
   if (root_)
     curve_ = std::make_unique<CurveWriter>(directory_->file("curve.csv"), young_, reference_energy_,
                                            initial_internal_, initial_contact_, scene_.resume ? path_.last().step : -1);
   if (!scene_.resume) {   // a resumed run has its starting state in its curve and fields already
-    if (root_) curve_->write(path_.last(), stage_name(stage_), theta_s_);
+    if (root_) curve_->write(path_.last(), stage().name, theta_s_);
     write_fields(path_.state(), (theta_s_ + path_.last().rotation) / degree);
   }
 }
 
 std::optional<analysis::Failure> Run::follow_load_path(int& interrupted_by)
 {
-  using analysis::LoadPath;
   const auto& loading = scene_.loading;
-  const auto on_point = [this](const analysis::LoadPoint& p, const Vector& x) { this->on_point(p, x); };
   std::optional<analysis::Failure> failure;
   try {
-    std::vector<double> stops;
-    const double current = (theta_s_ + path_.last().rotation) / degree;
-    for (double c : loading.checkpoints)
-      if (c > current + 1e-9 && c < loading.theta_y - 1e-9) stops.push_back(c);
-    if (!path_stage_.lifting) stops.push_back(loading.theta_y);
-    for (double stop : stops) {
-      failure = path_.advance(Master::rotation, stop * degree - theta_s_,
-                              LoadPath::spatula_control(Master::rotation, loading.free_lift), loading.rotation_steps,
-                              degree, on_point);
-      if (failure || path_.detached()) return failure;
-      if (std::find(loading.checkpoints.begin(), loading.checkpoints.end(), stop) != loading.checkpoints.end())
-        write_checkpoint_at(stop);
-    }
-    if (loading.type == LoadingType::lift) {
-      stage_ = Master::lift;
-      if (!path_stage_.lifting) path_stage_ = PathStage{true, path_.last().lift};
-      const double target = loading.final_lift + (loading.lift_relative ? path_stage_.lift_start : 0.0);
-      auto control = LoadPath::spatula_control(Master::lift, false);
-      control.prescribed[static_cast<int>(Master::slide)] = !loading.free_slide;
-      failure = path_.advance(Master::lift, target, control, loading.lift_steps, 1.0, on_point);
+    const auto& stages = loading.stages;
+    for (auto index = static_cast<std::size_t>(path_stage_.index); index < stages.size(); ++index) {
+      const Stage& stage = stages[index];
+      if (path_stage_.index != static_cast<int>(index))   // entering it (a restart inside it keeps its start)
+        path_stage_ = PathStage{static_cast<int>(index), motion_of(path_.last(), stage.master())};
+      const double target = stage.target + (stage.relative ? path_stage_.start : 0.0);
+      bool detached = false;
+      failure = follow_stage(stage, target, detached);
+      if (failure || detached) return failure;
     }
   } catch (const Interrupted& signal) {
     cancel_watchdog();   // the converged state to stop at is reached
@@ -465,16 +389,43 @@ std::optional<analysis::Failure> Run::follow_load_path(int& interrupted_by)
   return failure;
 }
 
+std::optional<analysis::Failure> Run::follow_stage(const Stage& stage, double target, bool& detached)
+{
+  const auto on_point = [this](const analysis::LoadPoint& p, const Vector& x) { this->on_point(p, x); };
+  const auto& loading = scene_.loading;
+  std::vector<double> stops;   // a rotation's checkpoint inclinations on the way, then its target
+  if (stage.kind == StageKind::rotate && stage.checkpoints) {
+    const double current = motion_of(path_.last(), Master::rotation);
+    for (double c : loading.checkpoints)
+      if (c > std::min(current, target) + 1e-9 && c < std::max(current, target) - 1e-9) stops.push_back(c);
+    if (target < current) std::reverse(stops.begin(), stops.end());
+  }
+  stops.push_back(target);
+  const double unit = stage.kind == StageKind::rotate ? degree : 1.0;
+  const double offset = stage.kind == StageKind::rotate ? theta_s_ : 0.0;   // the rotation counts from theta_s
+  for (double stop : stops) {
+    auto failure = path_.advance(stage.master(), stop * unit - offset, stage.control(), stage.steps, unit, on_point);
+    detached = path_.detached();
+    if (failure || detached) return failure;
+    if (stage.kind == StageKind::rotate && stage.checkpoints &&
+        std::find(loading.checkpoints.begin(), loading.checkpoints.end(), stop) != loading.checkpoints.end())
+      write_checkpoint_at(stop);
+  }
+  return std::nullopt;
+}
+
 std::optional<Stop> Run::finish(std::optional<analysis::Failure> failure, int interrupted_by)
 {
   // No equilibrium beyond a state where most of the pad has let go: that is the detachment.
   if (!interrupted_by && failure && !out_of_memory_ && options_.contact && released_fraction(path_.last()) > 0.5) {
     if (root_)
-      out_ << "detachment: no equilibrium beyond " << stage_name(stage_) << " = " << failure->load << " ("
+      out_ << "detachment: no equilibrium beyond " << stage().name << " = " << failure->load << " ("
            << failure->reason << ")\n";
     failure.reset();
   } else if (path_.detached() && root_) {
-    out_ << "detachment: the " << (stage_ == Master::rotation ? "moment" : "pull") << " has collapsed\n";
+    out_ << "detachment: the "
+         << (stage().master() == Master::rotation ? "moment" : stage().master() == Master::lift ? "pull" : "X force")
+         << " has collapsed\n";
   }
   const auto& last = path_.last();
   if (scene_.output.field_interval == 0 || last.step % scene_.output.field_interval != 0)
@@ -502,7 +453,8 @@ std::optional<Stop> Run::finish(std::optional<analysis::Failure> failure, int in
   // The last converged state, to go on from (spatula --resume, or Loading/restart from = last state).
   Stop stop;
   stop.signal = interrupted_by;
-  stop.stage = stage_;
+  stop.stage = stage().name;
+  stop.moved = stage().master();
   if (failure && !out_of_memory_ && path_.jump_in_progress())   // a descent stopped at its iteration limit
     failure->reason += "; the descent's state is checkpointed with the last state: a restart from it ('Loading/restart "
                        "from' = 'last state') with a larger 'Loading/Jump/maximum iterations' goes on from there";
@@ -515,9 +467,9 @@ std::optional<Stop> Run::finish(std::optional<analysis::Failure> failure, int in
 
 }  // namespace
 
-const char* stage_name(discretization::Master stage)
+const char* motion_name(discretization::Master motion)
 {
-  return stage == discretization::Master::rotation ? "rotation" : stage == discretization::Master::lift ? "lift" : "slide";
+  return motion == discretization::Master::rotation ? "rotation" : motion == discretization::Master::lift ? "lift" : "slide";
 }
 
 std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaShape& shape, const mesh::HexMesh& mesh,

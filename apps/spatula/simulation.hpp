@@ -19,11 +19,12 @@ struct Stop {
   analysis::Failure failure;
   int signal = 0;                    // the signal that interrupted the run, 0 for a failure
   bool checkpointed = false;         // 'last state' written to checkpoints.h5
-  discretization::Master stage = discretization::Master::rotation;   // the stage it stopped in
+  std::string stage = "rotation";    // the stage it stopped in (its name)
+  discretization::Master moved = discretization::Master::rotation;   // what that stage moves (the load's unit)
 };
 
-// "rotation", "lift" (curve.csv's stage column, messages).
-const char* stage_name(discretization::Master stage);
+// "rotation", "lift", "slide": a motion of the end face in messages.
+const char* motion_name(discretization::Master motion);
 
 // Returns why the run stopped, if the load path could not be followed to its end.
 std::optional<Stop> run_simulation(const Scene& scene, const geometry::SpatulaShape& shape,

@@ -1,0 +1,42 @@
+#pragma once
+// A load path as data: an ordered list of stages, each moving one motion of the end face (rotate it, lift it, slide
+// it along X) to a target, with its own step control and the end-face motions it leaves free. A scene writes them
+// in 'Loading/Stages' ('Loading/type' = stages), or keeps the fixed types: 'rotation' is the one-stage path
+// [rotation], 'lift' the two-stage path [rotation, lift], with the same results.
+#include "analysis/step_control.hpp"
+#include "discretization/discrete_system.hpp"
+
+#include <Teuchos_ParameterList.hpp>
+
+#include <string>
+#include <vector>
+
+namespace spatula::app {
+
+// What a stage moves: in the order of stage_kinds() ("rotate", "lift", "slide x").
+enum class StageKind { rotate, lift, slide };
+const std::vector<std::string>& stage_kinds();
+
+struct Stage {
+  std::string name;            // curve.csv's stage column, messages: the stage's sublist name
+  StageKind kind = StageKind::rotate;
+  double target = 0.0;         // rotate: theta_y [deg]; lift: u_z [nm]; slide: u_x [nm] of the face centre
+  bool relative = false;       // the target counted from where the stage starts
+  analysis::StepParameters steps;
+  bool free_lift = false;      // rotate, slide: zero net Z force on the face (else u_z held)
+  bool free_slide = false;     // lift: zero net X force on the face (else u_x held)
+  bool checkpoints = false;    // rotate: stop at 'Loading/checkpoints at theta_y' on the way and write them
+
+  discretization::Master master() const;
+  // Which end-face motions are prescribed while it goes (the moved one, and those it holds).
+  discretization::MasterControl control() const;
+};
+
+// Declares the sublist 'Loading/Stages' (free-form: read_stages validates each stage against its kind's keys).
+void declare_stages(Teuchos::ParameterList& loading);
+// The stages of 'Loading/Stages', in the order written. Throws parameters::InputError naming the stage for a missing
+// kind or target, an unknown kind, a key its kind does not take (a motion it cannot leave free), a name that cannot
+// be a column of curve.csv, or no stage at all.
+std::vector<Stage> read_stages(const Teuchos::ParameterList& stages);
+
+}  // namespace spatula::app

@@ -1,0 +1,134 @@
+#!/usr/bin/env bash
+# A load path as data ('Loading/type' = stages, 'Loading/Stages'): the default scene written as one rotate stage and
+# the coarse pull-off as a rotate and a lift stage give the same curve.csv as the fixed types (every column but the
+# wall time; the stage column keeps the names 'rotation' and 'lift'). A path of three stages (rotate, lift, slide x on
+# the stiction law) names its stages in the curve and ends each at its target; interrupted in its last stage and
+# resumed, it ends where the uninterrupted run ends. Bad stage lists are refused (exit 2) naming the stage.
+# usage: load_stages.sh <spatula> <source directory>
+set -u
+app=$1
+source_directory=$2
+here=$(cd "$(dirname "$0")" && pwd)
+source "$here/rotation_scene.sh"
+enter_scratch_directory
+export OMPI_MCA_btl=self OMPI_MCA_pml=ob1
+failures=0
+fail() { echo "FAIL $*"; failures=$((failures + 1)); }
+checked=0
+passed() { [ "$failures" -eq "$checked" ] && echo "ok   $*"; checked=$failures; }
+without_wall_time() { cut -d, -f1-22,24 "$1"; }   # (column 23: wall_s)
+stage() {   # name, kind, target, extra parameters
+  echo "<ParameterList name=\"$1\"><Parameter name=\"kind\" type=\"string\" value=\"$2\"/><Parameter name=\"target\" type=\"double\" value=\"$3\"/>${4:-}</ParameterList>"
+}
+# A scene file with its Loading list replaced by type = stages and the given stages, into directory $2.
+as_stages() {   # scene, directory, stages...
+  local scene=$1 directory=$2
+  shift 2
+  python3 - "$scene" "$directory" "$*" <<'PY'
+import sys, xml.etree.ElementTree as ElementTree
+root = ElementTree.parse(sys.argv[1]).getroot()
+loading = next(c for c in root if c.get('name') == 'Loading')
+root.remove(loading)
+stages = ElementTree.fromstring(f'<ParameterList name="Stages">{sys.argv[3]}</ParameterList>')
+new = ElementTree.SubElement(root, 'ParameterList', name='Loading')
+ElementTree.SubElement(new, 'Parameter', name='type', type='string', value='stages')
+new.append(stages)
+for output in (c for c in root if c.get('name') == 'Output'):
+    for p in output:
+        if p.get('name') == 'directory':
+            p.set('value', sys.argv[2])
+print(ElementTree.tostring(root, encoding='unicode'))
+PY
+}
+set_directory() { sed "s#<Parameter name=\"directory\" type=\"string\" value=\"[^\"]*\"/>#<Parameter name=\"directory\" type=\"string\" value=\"$2\"/>#" "$1"; }
+
+# 1. The fixed types written as stages: the same curves.
+set_directory "$source_directory/xml/default.xml" default-type > default-type.xml
+as_stages "$source_directory/xml/default.xml" default-stages \
+  "$(stage rotation rotate 90 '<ParameterList name="Steps"><Parameter name="maximum" type="double" value="2"/><Parameter name="minimum" type="double" value="0.01"/></ParameterList>')" \
+  > default-stages.xml
+set_directory "$source_directory/xml/pull-off-coarse.xml" pull-type > pull-type.xml
+as_stages "$source_directory/xml/pull-off-coarse.xml" pull-stages "$(stage rotation rotate 25)" "$(stage lift lift 200)" \
+  > pull-stages.xml
+for scene in default pull; do
+  for way in type stages; do
+    "$app" "$scene-$way.xml" > "$scene-$way.log" 2>&1 || fail "$scene written as $way: exit $?"
+  done
+  if cmp -s <(without_wall_time "$scene-type/curve.csv") <(without_wall_time "$scene-stages/curve.csv"); then
+    passed "$scene: $(($(wc -l < "$scene-type/curve.csv") - 1)) states, the same curve written either way"
+  else
+    fail "$scene: the curves differ"
+    diff <(without_wall_time "$scene-type/curve.csv") <(without_wall_time "$scene-stages/curve.csv") | head -n 4
+  fi
+done
+
+# 2. Three stages: rotate to 20 deg (the face free in Z), lift by 5 nm, slide along X by 10 nm (stiction holds the pad).
+three_stages() {   # directory
+  rotation_scene "$1" 20 | sed 's#value="frictionless"#value="stiction"#' > base.xml
+  as_stages base.xml "$1" "$(stage peel rotate 20)" \
+    "$(stage pull lift 5 '<Parameter name="relative" type="bool" value="true"/>')" \
+    "$(stage shear 'slide x' 10 '<Parameter name="relative" type="bool" value="true"/>')"
+}
+three_stages three > three.xml
+"$app" three.xml > three.log 2>&1 || fail "three stages: exit $?"
+python3 - three/curve.csv <<'PY' || fail "three stages: the curve does not follow the stages"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+stages = [r['stage'] for r in rows]
+order = [s for i, s in enumerate(stages) if i == 0 or s != stages[i - 1]]
+assert order == ['peel', 'pull', 'shear'], order
+last = {s: [r for r in rows if r['stage'] == s][-1] for s in order}
+first_pull = next(i for i, r in enumerate(rows) if r['stage'] == 'pull')
+start = rows[first_pull - 1]
+assert abs(float(last['peel']['theta_y_deg']) - 20) < 1e-9, last['peel']['theta_y_deg']
+assert abs(float(last['pull']['u_z_nm']) - float(start['u_z_nm']) - 5) < 1e-6, (last['pull']['u_z_nm'], start['u_z_nm'])
+assert abs(float(last['shear']['u_x_nm']) - float(last['pull']['u_x_nm']) - 10) < 1e-6, last['shear']['u_x_nm']
+assert abs(float(last['shear']['u_z_nm']) - float(last['pull']['u_z_nm'])) < 1e-6   # u_z held while sliding
+print(f"three stages: {len(rows) - 1} states, u_z {float(start['u_z_nm']):.2f} -> {float(last['pull']['u_z_nm']):.2f}, "
+      f"u_x -> {float(last['shear']['u_x_nm']):.2f} nm")
+PY
+passed "three stages named in the curve, each at its target"
+
+# 3. Stopped inside the last stage and resumed: the uninterrupted run's end.
+three_stages stopped | sed 's#<Parameter name="directory"#<Parameter name="checkpoint interval" type="double" value="0.0001"/>&#' > stopped.xml
+"$app" stopped.xml > stopped.log 2>&1 &
+pid=$!
+for _ in $(seq 2400); do grep -q "^step \+[0-9]\+ \+shear " stopped.log && break; sleep 0.05; done
+kill -TERM "$pid"
+status=0
+wait "$pid" || status=$?
+[ "$status" -eq 143 ] || fail "stopped in the shear stage: exit $status, expected 143"
+grep -q "where: .*stage 'shear'" stopped.incomplete/FAILURE.txt 2>/dev/null || fail "FAILURE.txt does not name the stage"
+"$app" stopped.xml --resume > resumed.log 2>&1 || fail "the resumed run: exit $?"
+python3 - three/curve.csv stopped/curve.csv <<'PY' || fail "the resumed run ends elsewhere"
+import csv, sys
+a, b = ([r for r in csv.DictReader(open(f))][-1] for f in sys.argv[1:3])
+for key in ('u_x_nm', 'u_z_nm', 'M_y_nNnm', 'P_z_nN'):
+    assert abs(float(a[key]) - float(b[key])) <= 1e-6 * max(1.0, abs(float(a[key]))), (key, a[key], b[key])
+print(f"resumed in 'shear': M_y {float(b['M_y_nNnm']):.6f} against {float(a['M_y_nNnm']):.6f}")
+PY
+passed "stopped in the shear stage and resumed: the same end"
+
+# 4. Bad stage lists: exit 2 naming the stage.
+bad() {   # case, expected text, stages...
+  local case=$1 expected=$2
+  shift 2
+  rotation_scene bad 10 > bad-base.xml
+  as_stages bad-base.xml bad "$@" > bad.xml
+  status=0
+  "$app" bad.xml --validate-only > "bad-$case.log" 2>&1 || status=$?
+  [ "$status" -eq 2 ] && grep -q "input error: .*$expected" "bad-$case.log" ||
+    { fail "$case: exit $status, $(tail -n 1 "bad-$case.log")"; }
+}
+bad unknown-kind "Loading/Stages/twist/kind' = 'twist': allowed kinds are rotate, lift, slide x" "$(stage twist twist 3)"
+bad no-target "stage 'Loading/Stages/up' has no 'target'" '<ParameterList name="up"><Parameter name="kind" type="string" value="lift"/></ParameterList>'
+bad free-slide-in-rotation "unknown parameter 'Loading/Stages/peel/free slide'" \
+  "$(stage peel rotate 10 '<Parameter name="free slide" type="bool" value="true"/>')"
+bad free-slide-frictionless "stage 'up' of 'Loading/Stages': 'free slide' = true needs 'Adhesion/law' = 'stiction'" \
+  "$(stage up lift 10 '<Parameter name="free slide" type="bool" value="true"/>')"
+bad no-stages "needs at least one stage in 'Loading/Stages'"
+bad comma "a stage's name is a column of curve.csv" "$(stage 'a,b' lift 3)"
+passed "bad stage lists refused by name"
+
+[ "$failures" -eq 0 ] && echo "PASS" || echo "$failures failure(s)"
+[ "$failures" -eq 0 ]
