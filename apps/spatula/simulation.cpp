@@ -1,9 +1,8 @@
 #include "simulation.hpp"
+#include "run.hpp"
 
-#include "checkpoint.hpp"
-#include "curve_writer.hpp"
 #include "interruption.hpp"
-#include "spectrum_output.hpp"
+#include "progress_report.hpp"
 
 #include "io/checked_write.hpp"
 #include "parameters/parameter_validation.hpp"
@@ -23,91 +22,6 @@ namespace spatula::app {
 
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
-constexpr double degree = pi / 180.0;
-
-// One run of a scene: the distributed system, its solvers and load path, and everything written along the way
-// (curve rows, progress lines, fields, checkpoints). run_simulation calls its phases in order.
-class Run {
-public:
-  Run(const Scene& scene, const geometry::SpatulaShape& shape, const mesh::HexMesh& mesh,
-      const mesh::Partition& partition, Teuchos::RCP<const Teuchos::Comm<int>> comm,
-      const io::OutputDirectory* directory, io::XdmfOutput* fields, std::ostream& out);
-
-  // On a rough substrate the pad starts pressed onto it (Adhesion/Rough Substrate/conform initially); a failure
-  // to find that equilibrium stops the run before any load.
-  std::optional<Stop> press_onto_rough_substrate();
-  // From the undeformed state, a checkpoint (restart) or a stopped run's last state (resume); opens the curve.
-  void start();
-  // The rotation, stopping at every checkpoint inclination on the way, then the lift. A signal ends either at a
-  // converged state (Interrupted, on every rank together): its number is returned in `interrupted_by`.
-  std::optional<analysis::Failure> follow_load_path(int& interrupted_by);
-  // Detachment, the solver's counters, and why the run stopped (with its last state checkpointed), if it did.
-  std::optional<Stop> finish(std::optional<analysis::Failure> failure, int interrupted_by);
-
-private:
-  using Master = discretization::Master;
-  using Vector = discretization::Vector;
-  using clock = std::chrono::steady_clock;
-  static constexpr double balance_limit = 2e-3;   // |Pi_ext - Pi_int - Pi_sa - D| / Pi_c0, the paper's bound
-
-  void on_point(const analysis::LoadPoint& p, const Vector& x);
-  void on_descent();
-  void print_step(const analysis::LoadPoint& p);
-  void checkpoint_if_due(const analysis::LoadPoint& p, const Vector& x);
-  void write_fields(const Vector& x, double time);
-  RunRecord record_at(const analysis::LoadPoint& p) const;   // what a resumed run needs besides the state at p
-  void write_last_state(const Vector& x, const analysis::LoadPoint& p);   // collective
-  void write_checkpoint_at(double theta_y);                              // collective
-  double load_of(const analysis::LoadPoint& p) const   // the current stage's motion: theta_y [deg], u_z or u_x [nm]
-  {
-    return motion_of(p, stage().master());
-  }
-  double released_fraction(const analysis::LoadPoint& p) const
-  {
-    return 2.0 * (p.contact_energy - initial_contact_) / reference_energy_;
-  }
-  bool detached(const analysis::LoadPoint& p);
-  std::string checkpoint_file() const { return directory_ ? directory_->file("checkpoints.h5") : ""; }
-
-  const Scene& scene_;
-  const mesh::HexMesh& mesh_;
-  Teuchos::RCP<const Teuchos::Comm<int>> comm_;
-  const bool root_;
-  const io::OutputDirectory* directory_;
-  io::XdmfOutput* fields_;
-  std::ostream& out_;
-  discretization::SystemOptions options_;
-  Teuchos::RCP<discretization::DiscreteSystem> system_;
-  solvers::LinearSolverFactory linear_;
-  Teuchos::RCP<solvers::SpatulaModel> model_;
-  solvers::NewtonSolver newton_;
-  analysis::LoadPath path_;
-  const double theta_s_, young_;
-  double reference_energy_ = 1.0;   // Pi_c0 = A_c w_adh of the full spatula (1 without adhesion)
-  std::unique_ptr<CurveWriter> curve_;
-  std::unique_ptr<SpectrumOutput> spectrum_;   // Output/tangent spectrum
-  const Stage& stage() const { return scene_.loading.stages.at(static_cast<std::size_t>(path_stage_.index)); }
-  // A motion of the end face at p, in its stage's unit: theta_y [deg], u_z or u_x [nm].
-  double motion_of(const analysis::LoadPoint& p, Master motion) const
-  {
-    return motion == Master::rotation ? (theta_s_ + p.rotation) / degree : motion == Master::lift ? p.lift : p.slide;
-  }
-  // One stage to its target (a rotation stopping at each checkpoint inclination on the way): a failure, or
-  // `detached` set where the spatula let go.
-  std::optional<analysis::Failure> follow_stage(const Stage& stage, double target, bool& detached);
-  PathStage path_stage_;   // where the path is: which stage, begun where
-  double peak_slide_ = 0.0;   // the largest |X force| of a slide stage (not checkpointed)
-  Teuchos::RCP<Vector> anchors_;   // the state the stiction anchors were set at ('restart state'), kept in checkpoints
-  // The energies the curve counts from (the undeformed spatula, or the pad pressed onto a rough substrate) and the
-  // peaks the detachment test compares with: kept in every checkpoint, so that a resumed run goes on with them.
-  double initial_contact_ = 0.0, initial_internal_ = 0.0;
-  double peak_moment_ = 0.0, peak_force_ = 0.0;
-  clock::time_point last_checkpoint_ = clock::now();
-  bool balance_warned_ = false;
-  bool out_of_memory_ = false;   // the load path stopped because an allocation failed (not a detachment)
-};
-
 discretization::SystemOptions system_options(const Scene& scene)
 {
   discretization::SystemOptions options;
@@ -126,6 +40,8 @@ Teuchos::RCP<discretization::DiscreteSystem> make_system(const Scene& scene, con
       discretization::spatula_constraints(mesh, {p1.x, p1.y, p1.z}, scene.loading.hold_contact_surface);
   return Teuchos::rcp(new discretization::DiscreteSystem(mesh, partition, constraints, scene.material, comm, options));
 }
+
+}  // namespace
 
 Run::Run(const Scene& scene, const geometry::SpatulaShape& shape, const mesh::HexMesh& mesh,
          const mesh::Partition& partition, Teuchos::RCP<const Teuchos::Comm<int>> comm,
@@ -207,20 +123,7 @@ void Run::write_checkpoint_at(double theta_y)
 
 void Run::print_step(const analysis::LoadPoint& p)
 {
-  const std::ios_base::fmtflags flags = out_.flags();
-  const std::streamsize precision = out_.precision();
-  out_ << "step " << std::setw(4) << p.step << "  " << stage().name << "  theta_y " << std::fixed
-       << std::setprecision(3) << std::setw(8) << (theta_s_ + p.rotation) / degree << " deg  u_z " << std::setw(9)
-       << p.lift << " nm  M_y " << std::setprecision(4) << std::setw(10) << 2 * p.moment << " nN nm  P_z "
-       << std::setw(9) << 2 * p.force << " nN  Pi_int " << std::setw(9) << curve_->internal(p);
-  if (options_.contact)
-    out_ << "  Pi_sa/Pi_c0 " << std::setprecision(4) << curve_->stored_adhesion(p) / reference_energy_
-         << "  balance " << std::scientific << std::setprecision(1) << curve_->balance_error(p) << std::fixed
-         << "  faces " << p.active_faces << "+" << p.skipped_faces;
-  out_ << "  newton " << p.newton_iterations << "  neg.piv " << p.negative_pivots << "  " << std::setprecision(1)
-       << p.seconds << " s" << std::endl;
-  out_.flags(flags);   // the step line's format stays with it
-  out_.precision(precision);
+  print_state_line(out_, p, stage().name, theta_s_, *curve_, options_.contact ? reference_energy_ : 0.0);
   // A curve whose energies do not balance is not to be trusted: say so once, when it first happens.
   if (options_.contact && !balance_warned_ && curve_->balance_error(p) > balance_limit) {
     balance_warned_ = true;
@@ -431,23 +334,7 @@ std::optional<Stop> Run::finish(std::optional<analysis::Failure> failure, int in
   if (scene_.output.field_interval == 0 || last.step % scene_.output.field_interval != 0)
     write_fields(path_.state(), load_of(last));
   if (root_) {
-    const auto& statistics = linear_.mumps_statistics();
-    out_ << "solver: " << model_->counters().jacobians << " tangents, " << model_->counters().residuals
-         << " residual-only evaluations, " << model_->counters().inadmissible << " inadmissible trial states";
-    if (statistics.factorizations > 0)
-      out_ << "; MUMPS: " << statistics.analyses << " analyses, " << statistics.factorizations << " factorizations ("
-           << statistics.reused << " tangents served by an earlier one, " << statistics.factorization_seconds
-           << " s), " << statistics.solves << " solves";
-    const auto& multigrid = linear_.multigrid_statistics();
-    if (multigrid.setups > 0)
-      out_ << "; AMG: " << multigrid.setups << (multigrid.setups == 1 ? " hierarchy, " : " hierarchies, ")
-           << multigrid.reuses << " reused, " << multigrid.applications << " applications"
-           << (multigrid.fell_back ? ", then MUMPS after a stalled solve" : "");
-    if (const auto* descents = path_.descent_statistics())
-      out_ << "; jumps' energy descents: " << descents->analyses << " analyses, " << descents->factorizations
-           << " factorizations (" << descents->factorization_seconds << " s), " << descents->solves << " solves ("
-           << descents->reused << " with kept factors)";
-    out_ << "\n";
+    print_solver_counts(out_, *model_, linear_, path_);
   }
   if (!failure && !interrupted_by) return std::nullopt;
   // The last converged state, to go on from (spatula --resume, or Loading/restart from = last state).
@@ -464,8 +351,6 @@ std::optional<Stop> Run::finish(std::optional<analysis::Failure> failure, int in
   stop.checkpointed = true;
   return stop;
 }
-
-}  // namespace
 
 const char* motion_name(discretization::Master motion)
 {

@@ -60,11 +60,19 @@ RunLock::RunLock(const std::string& path) : file_(file_of(path))
     }
     if (::flock(descriptor_, LOCK_EX | LOCK_NB) != 0) {
       const int error = errno;
+      // The holder writes its name just after taking the lock: a run started at the same moment waits for it (a
+      // second at most, a busy machine's scheduling) so that the refusal can name it.
+      std::string holder_now = holder;
+      for (int wait = 0; error == EWOULDBLOCK && holder_now.empty() && wait < 40; ++wait) {
+        ::usleep(25000);
+        holder_now = contents(descriptor_);
+      }
       ::close(descriptor_);
       descriptor_ = -1;
       if (error != EWOULDBLOCK)
         throw std::runtime_error("cannot lock '" + file_ + "': " + std::strerror(error));
-      const std::string holder_now = holder.empty() ? "another run" : holder.substr(std::strlen("spatula run lock: "));
+      holder_now = holder_now.rfind(signature, 0) == 0 ? holder_now.substr(std::strlen("spatula run lock: "))
+                                                        : std::string("another run");
       throw DirectoryInUse("'" + path + "' is being written by another run (" + holder_now + ", lock file '" + file_ +
                            "'): wait for it to end, or choose another 'Output/directory'");
     }
