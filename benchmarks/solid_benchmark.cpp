@@ -166,7 +166,7 @@ int main(int argc, char** argv)
   analysis::StepParameters steps;
   steps.initial = steps.maximum = 2.5;
   const double degree = 3.14159265358979323846 / 180.0;
-  if (path.advance(discretization::Master::rotation, 2.5 * degree, analysis::LoadPath::spatula_control(discretization::Master::rotation, true), steps, degree, {})) return 3;
+  if (path.advance(discretization::Master::rotation, 2.5 * degree, discretization::MasterControl::moving(discretization::Master::rotation, {discretization::Master::lift}), steps, degree, {})) return 3;
 
   auto residual = system->create_vector();
   std::vector<double> residual_times, tangent_times;
@@ -188,7 +188,7 @@ int main(int argc, char** argv)
                                  timer_total("spatula: assembly communication");
   const auto newton_start = std::chrono::steady_clock::now();
   const std::size_t points_before = path.points().size();
-  if (path.advance(discretization::Master::rotation, 5.0 * degree, analysis::LoadPath::spatula_control(discretization::Master::rotation, true), steps, degree, {})) return 3;
+  if (path.advance(discretization::Master::rotation, 5.0 * degree, discretization::MasterControl::moving(discretization::Master::rotation, {discretization::Master::lift}), steps, degree, {})) return 3;
   const double newton_seconds = seconds(newton_start);
   const double assembly_seconds = timer_total("spatula: assembly bulk (residual + tangent)") +
                                   timer_total("spatula: assembly bulk (residual)") +

@@ -87,7 +87,7 @@ struct LoadPath::Descent {
 solvers::MumpsSolver& LoadPath::descent_solver()
 {
   if (!descent_solver_) {   // the user's MUMPS options, but exact LDL^T factors: the descent needs their inertia
-    auto parameters = newton_.linear_solver().parameters().mumps;
+    auto parameters = equilibrium_.linear_solver().parameters().mumps;
     parameters.symmetric = true;
     parameters.low_rank_tolerance = 0.0;
     descent_solver_ = std::make_unique<solvers::MumpsSolver>(model_.system().owned_map(), parameters);
@@ -288,7 +288,7 @@ std::variant<int, std::string> LoadPath::descend(Vector& x, const JumpInProgress
       return reason.str();
     }
     confirmed->assign(x);
-    const auto plain = newton_.solve(*confirmed, nullptr, true);   // the give-up rules: a hopeless try ends soon
+    const auto plain = equilibrium_.solve(*confirmed, nullptr, true);   // the give-up rules: a hopeless try ends soon
     if (plain.converged) {
       x.assign(*confirmed);
       return d.iteration + (plain.iterations.empty() ? 0 : plain.iterations.back().iteration);

@@ -16,9 +16,9 @@
 
 namespace spatula::analysis {
 
-LoadPath::LoadPath(solvers::SpatulaModel& model, const solvers::NewtonSolver& newton, std::ostream* log,
+LoadPath::LoadPath(solvers::SpatulaModel& model, const solvers::EquilibriumSolver& equilibrium, std::ostream* log,
                    bool convergence_tables)
-    : model_(model), newton_(newton), log_(log), tables_(convergence_tables),
+    : model_(model), equilibrium_(equilibrium), log_(log), tables_(convergence_tables),
       x_(model.system().create_vector()), previous_(model.system().create_vector()),
       older_(model.system().create_vector()), started_(now())
 {
@@ -55,13 +55,6 @@ LoadPoint LoadPath::measure(const Vector& x, int iterations, int negative_pivots
                           0.5 * (last.slide_force + point.slide_force) * (point.slide - last.slide);
   }
   return point;
-}
-
-discretization::MasterControl LoadPath::spatula_control(Master controlled, bool other_free)
-{
-  discretization::MasterControl control;   // all prescribed: slide (X) held
-  if (controlled != Master::slide) control.prescribed[controlled == Master::rotation ? 1 : 0] = !other_free;
-  return control;
 }
 
 // The state of one advance(): where the path is, the next increment, and what the failed attempts since the last
@@ -119,7 +112,7 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
     const double load = stepping.value + direction * stepping.increment;
     predict(*trial, controlled, load, stepping.increment, steps.predictor);
     std::ostringstream table;
-    const auto result = newton_.solve(*trial, tables_ ? &table : nullptr, stepping.failed.known());
+    const auto result = equilibrium_.solve(*trial, tables_ ? &table : nullptr, stepping.failed.known());
     if (!result.converged) {
       if (auto failure = after_failed_attempt(stepping, load, *trial, result.failure, table.str(), on_point))
         return failure;

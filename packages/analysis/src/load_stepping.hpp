@@ -109,7 +109,7 @@ struct Failure {
 
 class LoadPath {
 public:
-  LoadPath(solvers::SpatulaModel& model, const solvers::NewtonSolver& newton, std::ostream* log,
+  LoadPath(solvers::SpatulaModel& model, const solvers::EquilibriumSolver& equilibrium, std::ostream* log,
            bool convergence_tables);
 
   // The current state (starts undeformed, rotation and lift zero).
@@ -126,9 +126,6 @@ public:
   using Callback = std::function<void(const LoadPoint&, const Vector&)>;
   std::optional<Failure> advance(Master controlled, double target, discretization::MasterControl control,
                                  const StepParameters& steps, double unit, const Callback& on_point);
-
-  // The usual spatula control: X (slide) held, `controlled` prescribed, the other of rotation/lift free or not.
-  static discretization::MasterControl spatula_control(Master controlled, bool other_free);
 
   // Follows the path by arc-length in `controlled` from the current state (it may fall and rise again round a
   // fold) until it exceeds `resume_above` (in the direction of increasing load) or the step budget is spent.
@@ -246,7 +243,7 @@ private:
   solvers::MumpsSolver& descent_solver();
 
   solvers::SpatulaModel& model_;
-  const solvers::NewtonSolver& newton_;
+  const solvers::EquilibriumSolver& equilibrium_;   // the corrector of every step
   std::ostream* log_;
   bool tables_;
   Teuchos::RCP<Vector> x_, previous_, older_;   // the last three converged states of this advance

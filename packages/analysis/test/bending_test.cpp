@@ -14,6 +14,7 @@
 using namespace spatula;
 using analysis::LoadPath;
 using discretization::Master;
+using discretization::MasterControl;
 
 namespace {
 
@@ -81,7 +82,7 @@ TEST(Bending, MomentMatchesBeamTheoryAndEnergyBalances)
   steps.initial = 0.5;
   steps.maximum = 0.5;
   const double degree = pi / 180.0;
-  ASSERT_FALSE(path.advance(Master::rotation, 2.0 * degree, LoadPath::spatula_control(Master::rotation, true), steps, degree, {}).has_value());
+  ASSERT_FALSE(path.advance(Master::rotation, 2.0 * degree, MasterControl::moving(Master::rotation, {Master::lift}), steps, degree, {}).has_value());
   // Small strain: M = E I kappa with kappa = alpha / L, I = b h^3 / 12 (the model carries half of b). Trilinear
   // hexahedra with full integration lock a little in bending: +1.5 % with these elements (1.25 x 2.5, 4 through
   // the height), +3 % with twice as long ones.
@@ -114,7 +115,7 @@ TEST(Bending, LargeRotationEnergyBalanceAndQuadraticConvergence)
   analysis::StepParameters steps;
   steps.initial = 5.0;
   steps.maximum = 5.0;
-  ASSERT_FALSE(path.advance(Master::rotation, 40.0 * degree, LoadPath::spatula_control(Master::rotation, true), steps, degree, {}).has_value());
+  ASSERT_FALSE(path.advance(Master::rotation, 40.0 * degree, MasterControl::moving(Master::rotation, {Master::lift}), steps, degree, {}).has_value());
   EXPECT_NEAR(path.last().internal_energy / path.last().external_work, 1.0, 1e-3);
 
   // One more large step (40 -> 50 deg) from the converged state, without predictor: the
@@ -154,7 +155,7 @@ TEST(SpatulaRotation, SameReactionsOnAllRanksAndOnOne)
                     Teuchos::RCP<const Teuchos::Comm<int>>(new Teuchos::MpiComm<int>(MPI_COMM_SELF))}) {
     Solver solver(mesh, constraints, comm);
     LoadPath path(*solver.model, *solver.newton, nullptr, false);
-    ASSERT_FALSE(path.advance(Master::rotation, 10.0 * degree, LoadPath::spatula_control(Master::rotation, true), steps, degree, {}).has_value());
+    ASSERT_FALSE(path.advance(Master::rotation, 10.0 * degree, MasterControl::moving(Master::rotation, {Master::lift}), steps, degree, {}).has_value());
     results.push_back(path.last());
   }
   EXPECT_NEAR(results[0].moment, results[1].moment, 1e-8 * std::abs(results[1].moment));
@@ -176,7 +177,7 @@ TEST(Bending, OversizedStepsAreCutBackNeverAcceptedBroken)
   steps.maximum = 120.0;
   steps.minimum = 0.5;
   const double degree = pi / 180.0;
-  ASSERT_FALSE(path.advance(Master::rotation, 120.0 * degree, LoadPath::spatula_control(Master::rotation, true), steps, degree, {}).has_value());
+  ASSERT_FALSE(path.advance(Master::rotation, 120.0 * degree, MasterControl::moving(Master::rotation, {Master::lift}), steps, degree, {}).has_value());
   EXPECT_NEAR(path.last().rotation, 120.0 * degree, 1e-12);
   EXPECT_GT(path.points().size(), 3u);   // it had to take smaller steps
   for (const auto& point : path.points()) {
@@ -200,7 +201,7 @@ TEST(Bending, UnreachableLoadReportsTheFailure)
   steps.initial = 10.0;
   steps.minimum = 1.0;
   const double degree = pi / 180.0;
-  const auto failure = path.advance(Master::rotation, 30.0 * degree, LoadPath::spatula_control(Master::rotation, true), steps, degree, {});
+  const auto failure = path.advance(Master::rotation, 30.0 * degree, MasterControl::moving(Master::rotation, {Master::lift}), steps, degree, {});
   ASSERT_TRUE(failure.has_value());
   EXPECT_EQ(failure->step, 1);
   EXPECT_LT(failure->smallest_increment, 2.0);

@@ -27,6 +27,7 @@
 using namespace spatula;
 using discretization::DiscreteSystem;
 using discretization::Master;
+using discretization::MasterControl;
 
 namespace {
 
@@ -129,7 +130,7 @@ TEST(Adhesion, StiffBlockLiftedFeelsAreaTimesTractionMaximalAtRmin)
   analysis::LoadPath path(*model, newton, nullptr, false);
   analysis::StepParameters steps;
   steps.initial = steps.maximum = 0.01;
-  ASSERT_FALSE(path.advance(Master::lift, 0.3, analysis::LoadPath::spatula_control(Master::lift, false), steps, 1.0, {}).has_value());
+  ASSERT_FALSE(path.advance(Master::lift, 0.3, MasterControl::moving(Master::lift), steps, 1.0, {}).has_value());
   const auto& lj = s.lennard_jones;
   const double area = 20.0 * 5.0;
   double strongest = 0.0, at = 0.0;

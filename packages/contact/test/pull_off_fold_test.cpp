@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <functional>
 
 using namespace spatula;
@@ -135,7 +136,7 @@ struct BarPath {
   std::optional<analysis::Failure> lift_to(double w)
   {
     return path->advance(discretization::Master::lift, w,
-                         analysis::LoadPath::spatula_control(discretization::Master::lift, false), steps, 1.0, {});
+                         discretization::MasterControl::moving(discretization::Master::lift), steps, 1.0, {});
   }
 };
 
@@ -270,4 +271,44 @@ TEST(PullOffFold, EarlyDescentsTakeTheStepsNewtonFailsOnASmoothBranch)
         << "at the lift " << w;
   }
   EXPECT_GE(bar_path.path->early_descents().taken, 1);
+}
+
+// The load path takes its corrector through solvers::EquilibriumSolver: a solver put in Newton's place (here one that
+// counts its calls and hands them on) is used for every step, the jump's confirmation included, and the path is the
+// one Newton alone follows.
+TEST(PullOffFold, TheLoadPathUsesTheEquilibriumSolverItIsGiven)
+{
+  class CountingSolver : public solvers::EquilibriumSolver {
+  public:
+    explicit CountingSolver(const solvers::EquilibriumSolver& inner) : inner_(inner) {}
+    solvers::NewtonResult solve(discretization::Vector& x, std::ostream* table, bool after_failure) const override
+    {
+      ++calls;
+      return inner_.solve(x, table, after_failure);
+    }
+    const solvers::LinearSolverFactory& linear_solver() const override { return inner_.linear_solver(); }
+    mutable int calls = 0;
+
+  private:
+    const solvers::EquilibriumSolver& inner_;
+  };
+  analysis::JumpParameters jump;
+  BarPath alone(jump), counted(jump);
+  CountingSolver counting(*counted.newton);
+  counted.path = std::make_unique<analysis::LoadPath>(*counted.model, counting, nullptr, false);
+  counted.path->set_past_folds(analysis::LoadPath::PastFolds::jump);
+  jump.step_balance_tolerance = 1e-4 * BarPath::side * BarPath::side * alone.bar.law.work_of_adhesion();
+  counted.path->set_jump_parameters(jump);
+  const double target = 4.0;   // past the fold (about 2.6 nm): a jump on the way
+  ASSERT_FALSE(alone.lift_to(target).has_value());
+  ASSERT_FALSE(counted.lift_to(target).has_value());
+  const auto &a = alone.path->points(), &b = counted.path->points();
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].lift, b[k].lift);
+    EXPECT_EQ(a[k].force, b[k].force);
+    EXPECT_EQ(a[k].after_jump, b[k].after_jump);
+  }
+  EXPECT_TRUE(std::any_of(b.begin(), b.end(), [](const analysis::LoadPoint& p) { return p.after_jump; }));
+  EXPECT_GE(counting.calls, static_cast<int>(b.size()) - 1);   // every converged step came through it
 }

@@ -17,6 +17,7 @@
 #include <Teuchos_ParameterList.hpp>
 
 #include <array>
+#include <initializer_list>
 #include <memory>
 #include <string>
 
@@ -34,6 +35,14 @@ struct SolidParameters {
 // Which end-face masters are prescribed (their values are then taken from the state vector).
 struct MasterControl {
   std::array<bool, master_count> prescribed{true, true, true};
+  // `moved` prescribed, the masters in `free` left free (zero net reaction), the others held.
+  static MasterControl moving(Master moved, std::initializer_list<Master> free = {})
+  {
+    MasterControl control;
+    for (Master master : free)
+      if (master != moved) control.prescribed[static_cast<int>(master)] = false;
+    return control;
+  }
 };
 
 struct Evaluation {

@@ -3,6 +3,7 @@
 //   (|f|_2 <= absolute tolerance  or  |f|_2 <= relative tolerance * |f_0|_2)  and  |dx|_inf <= update tolerance,
 // and a convergence table per step: iteration, residual norm, update norm, line-search step, negative pivots of
 // the tangent (MUMPS LDL^T inertia), seconds, slope ratio (below).
+#include "solvers/equilibrium_solver.hpp"
 #include "solvers/front_elimination.hpp"
 #include "solvers/linear_solver.hpp"
 #include "solvers/spatula_model.hpp"
@@ -44,35 +45,15 @@ struct NewtonParameters {
 
 const std::vector<std::string>& line_search_names();
 
-struct NewtonIteration {
-  int iteration = 0;
-  double residual_norm = 0.0;
-  double update_norm = 0.0;
-  double step = 1.0;
-  int negative_pivots = -1;
-  double seconds = 0.0;
-  // f(x_k) . dx / f(x_k-1) . dx: the energy's slope along the step at its end over its slope at its start (0: the
-  // step ended at the minimum along its line; < 0: past it; > 0 and near 1: far short of it).
-  double slope_ratio = 0.0;
-};
-
-struct NewtonResult {
-  bool converged = false;
-  std::string failure;   // why not, for the log
-  double initial_residual_norm = 0.0;
-  std::vector<NewtonIteration> iterations;
-  EliminationCounts elimination;
-};
-
-class NewtonSolver {
+class NewtonSolver : public EquilibriumSolver {
 public:
   NewtonSolver(Teuchos::RCP<SpatulaModel> model, const NewtonParameters& parameters,
                const LinearSolverFactory& linear_solver);
   // Solves f(x) = 0 starting from x; on success x holds the solution, otherwise x is unchanged. `after_failure`:
   // the caller retries after a failed step (a fold may be near), where the give-up rule applies by default.
-  NewtonResult solve(discretization::Vector& x, std::ostream* table, bool after_failure = false) const;
+  NewtonResult solve(discretization::Vector& x, std::ostream* table, bool after_failure = false) const override;
 
-  const LinearSolverFactory& linear_solver() const { return linear_solver_; }
+  const LinearSolverFactory& linear_solver() const override { return linear_solver_; }
 
 private:
   Teuchos::RCP<SpatulaModel> model_;
