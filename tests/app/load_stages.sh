@@ -4,14 +4,17 @@
 # wall time; the stage column keeps the names 'rotation' and 'lift'). A path of three stages (rotate, lift, slide x on
 # the stiction law) names its stages in the curve and ends each at its target; interrupted in its last stage and
 # resumed, it ends where the uninterrupted run ends. Bad stage lists are refused (exit 2) naming the stage.
-# usage: load_stages.sh <spatula> <source directory>
+# On two ranks, a run stopped inside its second stage and resumed ends where the one-rank uninterrupted run ends.
+# usage: load_stages.sh <spatula> <source directory> <mpiexec> [mpiexec flags...]
 set -u
 app=$1
 source_directory=$2
+mpiexec=$3
+shift 3
+flags=("$@")
 here=$(cd "$(dirname "$0")" && pwd)
 source "$here/rotation_scene.sh"
 enter_scratch_directory
-export OMPI_MCA_btl=self OMPI_MCA_pml=ob1
 failures=0
 fail() { echo "FAIL $*"; failures=$((failures + 1)); }
 checked=0
@@ -66,7 +69,7 @@ done
 three_stages() {   # directory
   rotation_scene "$1" 20 | sed 's#value="frictionless"#value="stiction"#' > base.xml
   as_stages base.xml "$1" "$(stage peel rotate 20)" \
-    "$(stage pull lift 5 '<Parameter name="relative" type="bool" value="true"/>')" \
+    "$(stage pull lift 5 '<Parameter name="relative" type="bool" value="true"/><ParameterList name="Steps"><Parameter name="initial" type="double" value="0.5"/><Parameter name="maximum" type="double" value="0.5"/></ParameterList>')" \
     "$(stage shear 'slide x' 10 '<Parameter name="relative" type="bool" value="true"/>')"
 }
 three_stages three > three.xml
@@ -108,6 +111,27 @@ for key in ('u_x_nm', 'u_z_nm', 'M_y_nNnm', 'P_z_nN'):
 print(f"resumed in 'shear': M_y {float(b['M_y_nNnm']):.6f} against {float(a['M_y_nNnm']):.6f}")
 PY
 passed "stopped in the shear stage and resumed: the same end"
+
+# 3b. The same on two ranks, stopped inside the second stage ('pull').
+three_stages ranks | sed 's#<Parameter name="directory"#<Parameter name="checkpoint interval" type="double" value="0.0001"/>&#' > ranks.xml
+"$mpiexec" "${flags[@]}" -np 2 "$app" "$PWD/ranks.xml" > ranks.log 2>&1 &
+pid=$!
+# (the curve, written by rank 0 row by row: mpiexec's forwarding of the log may lag behind)
+for _ in $(seq 2400); do grep -q "^[0-9]\+,pull," ranks.partial/curve.csv 2>/dev/null && break; sleep 0.02; done
+pkill -TERM -P "$pid"   # both ranks at once (mpiexec forwards a signal late)
+wait "$pid"
+grep -q "where: .*stage 'pull'" ranks.incomplete/FAILURE.txt 2>/dev/null ||
+  fail "2 ranks: not stopped inside 'pull' ($(grep -o "where: .*" ranks.incomplete/FAILURE.txt 2>/dev/null))"
+timeout 300 "$mpiexec" "${flags[@]}" -np 2 "$app" "$PWD/ranks.xml" --resume > ranks-resumed.log 2>&1 ||
+  fail "2 ranks: the resumed run: exit $?"
+python3 - three/curve.csv ranks/curve.csv <<'PY' || fail "2 ranks: the resumed run ends elsewhere"
+import csv, sys
+a, b = ([r for r in csv.DictReader(open(f))][-1] for f in sys.argv[1:3])
+for key in ('u_x_nm', 'u_z_nm', 'M_y_nNnm', 'P_z_nN'):
+    assert abs(float(a[key]) - float(b[key])) <= 1e-6 * max(1.0, abs(float(a[key]))), (key, a[key], b[key])
+print(f"2 ranks resumed in 'pull': M_y {float(b['M_y_nNnm']):.6f} against {float(a['M_y_nNnm']):.6f} on one rank")
+PY
+passed "2 ranks, stopped in the pull stage and resumed: the one-rank end"
 
 # 4. Bad stage lists: exit 2 naming the stage.
 bad() {   # case, expected text, stages...
