@@ -1,5 +1,6 @@
 // The solid solver on small models: a slender bar bent by end rotations against beam theory, the energy balance
-// Pi_int = int M dtheta, quadratic Newton convergence at large rotation, and the spatula's reactions on 1 vs 2 ranks.
+// Pi_int = int M dtheta, quadratic Newton convergence at large rotation, the spatula's reactions on 1 vs 2 ranks, and a
+// thin layer sheared by a slide of its rigid face against simple shear.
 #include "mesh/box_mesh.hpp"
 #include "analysis/load_stepping.hpp"
 #include "mesh/spatula_mesher.hpp"
@@ -207,4 +208,46 @@ TEST(Bending, UnreachableLoadReportsTheFailure)
   EXPECT_LT(failure->smallest_increment, 2.0);
   EXPECT_NE(failure->reason.find("no convergence"), std::string::npos) << failure->reason;
   EXPECT_EQ(path.points().size(), 1u);   // nothing accepted
+}
+
+// A slide of the rigid face: a thin layer (thickness H, a x a, the half a x a/2 modelled) bonded to a fixed base and
+// sheared by sliding its top face along X by u, rotation and lift held. Away from its free edges the layer is in
+// simple shear, whose Neo-Hookean shear stress is exactly mu u / H; the edges (a strip of about H out of a) lower the
+// force by a few per cent. The X reaction follows mu A u / H within H / a, linearly in u (the second slide doubles it).
+TEST(Shear, ASlideShearsALayerAsSimpleShearPredicts)
+{
+  const double a = 40.0, thickness = 2.0;
+  mesh::BoxParameters box;
+  box.lengths = {a, 0.5 * a, thickness};
+  box.elements = {20, 10, 2};
+  const auto mesh = mesh::box_mesh(box);
+  discretization::Constraints constraints;
+  constraints.fixed.push_back({mesh.nodes(mesh::Boundary::symmetry), 1});
+  std::vector<std::int64_t> base, top;
+  for (std::int64_t n = 0; n < mesh.node_count(); ++n) {
+    if (std::abs(mesh.coordinates[n][2]) < 1e-9) base.push_back(n);
+    if (std::abs(mesh.coordinates[n][2] - thickness) < 1e-9) top.push_back(n);
+  }
+  for (int component = 0; component < 3; ++component) constraints.fixed.push_back({base, component});
+  constraints.rigid_nodes = top;
+  constraints.rigid_centre = {0.5 * a, 0.0, thickness};
+  Solver solver(mesh, constraints, Teuchos::DefaultComm<int>::getComm());
+  LoadPath path(*solver.model, *solver.newton, nullptr, false);
+  analysis::StepParameters steps;
+  steps.initial = steps.maximum = 0.01;
+  const discretization::SolidParameters solid;
+  const double mu = solid.young / (2.0 * (1.0 + solid.poisson)), area = 0.5 * a * a;
+  double first_force = 0.0;
+  for (double u : {0.02, 0.04}) {
+    ASSERT_FALSE(path.advance(Master::slide, u, MasterControl::moving(Master::slide), steps, 1.0, {}).has_value());
+    const auto& p = path.last();
+    const double simple_shear = mu * area * u / thickness;
+    EXPECT_NEAR(p.slide, u, 1e-12);
+    EXPECT_LT(std::abs(p.slide_force), simple_shear);
+    EXPECT_GT(std::abs(p.slide_force), (1.0 - thickness / a) * simple_shear) << "at u = " << u;
+    std::cout << "slide " << u << " nm: X force " << std::abs(p.slide_force) << " nN, simple shear " << simple_shear
+              << " nN\n";
+    if (first_force == 0.0) first_force = std::abs(p.slide_force);
+    else EXPECT_NEAR(std::abs(p.slide_force), 2.0 * first_force, 1e-3 * first_force);   // small strain: linear
+  }
 }
