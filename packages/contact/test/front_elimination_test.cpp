@@ -123,7 +123,7 @@ TEST(FrontElimination, RelaxesTheNodeThatCarriesTheResidualAloneAndLowersTheEner
   moved.update(-1.0, before, 1.0);
   const auto values = moved.getData();
   int changed = 0;
-  for (std::size_t i = 0; i < values.size(); ++i) changed += values[i] != 0.0;
+  for (decltype(values.size()) i = 0; i < values.size(); ++i) changed += values[i] != 0.0;
   int total = 0;
   Teuchos::reduceAll(*bar.system->owned_map()->getComm(), Teuchos::REDUCE_SUM, 1, &changed, &total);
   EXPECT_GE(total, 1);
@@ -150,6 +150,8 @@ TEST(FrontElimination, NewtonWithTheRelaxationReachesTheSameEquilibrium)
     const auto result = bar.solve(*x, use);
     ASSERT_TRUE(result.converged) << result.failure;
     EXPECT_LT(relative_difference(*reference, *x), 1e-8);
-    if (use == solvers::EliminationUse::before_direction) EXPECT_GE(result.elimination.applications, 1);
+    if (use == solvers::EliminationUse::before_direction) {
+      EXPECT_GE(result.elimination.applications, 1);
+    }
   }
 }
