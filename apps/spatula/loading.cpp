@@ -1,5 +1,6 @@
 #include "loading.hpp"
 
+#include "analysis/instability_policy.hpp"
 #include "parameters/parameter_validation.hpp"
 
 #include <algorithm>
@@ -8,10 +9,9 @@
 
 namespace spatula::app {
 
-const std::vector<std::string>& instability_methods()
+std::shared_ptr<const analysis::InstabilityPolicy> instability_policy(const LoadingParameters& loading)
 {
-  static const std::vector<std::string> methods = {"stop", "jump", "arc-length"};
-  return methods;
+  return analysis::InstabilityPolicies::instance().make(loading.past_instabilities, loading.arc_length_steps);
 }
 
 const std::vector<std::string>& loading_types()
@@ -75,11 +75,11 @@ void LoadingParameters::declare(Teuchos::ParameterList& loading)
   analysis::StepParameters::declare(parameters::declare_sublist(loading, "Lift Steps", "increments of u_z [nm]"),
                                     d.lift_steps);
   parameters::declare_string(loading, "past instabilities",
-                             parameters::name_of(d.past_instabilities, instability_methods()),
+                             d.past_instabilities,
                              "where no equilibrium follows at a larger load (a snap): stop; jump at fixed load to the "
                              "next stable state by energy descent; or follow the path round the fold by arc-length "
                              "continuation (LOCA)",
-                             instability_methods());
+                             analysis::InstabilityPolicies::instance().names());
   parameters::declare_string(loading, "restart file", d.restart_file,
                              "checkpoints.h5 of an earlier run to start from (empty: the undeformed spatula)");
   parameters::declare_double(loading, "restart theta_y", d.restart_theta_y, "the checkpoint to start from [deg]",
@@ -138,8 +138,7 @@ LoadingParameters LoadingParameters::from(const Teuchos::ParameterList& loading)
   p.hold_contact_surface = loading.get<bool>("hold contact surface");
   p.rotation_steps = analysis::StepParameters::from(loading.sublist("Rotation Steps"), "Loading/Rotation Steps");
   p.lift_steps = analysis::StepParameters::from(loading.sublist("Lift Steps"), "Loading/Lift Steps");
-  p.past_instabilities =
-      parameters::choice<analysis::LoadPath::PastFolds>(loading, "past instabilities", instability_methods());
+  p.past_instabilities = loading.get<std::string>("past instabilities");
   p.restart_file = loading.get<std::string>("restart file");
   p.restart_theta_y = loading.get<double>("restart theta_y");
   p.restart_from_last_state = loading.get<std::string>("restart from") == "last state";

@@ -9,6 +9,7 @@
 
 #include <Teuchos_ParameterList.hpp>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,7 +29,7 @@ struct LoadingParameters {
   // pull-off at 60 deg) 2 deg / 5 nm took less CPU than half or twice that, with the same P_max to 3e-5.
   analysis::StepParameters rotation_steps{1.0, 0.01, 2.0};   // [deg]
   analysis::StepParameters lift_steps{2.0, 0.01, 5.0};       // [nm]
-  analysis::LoadPath::PastFolds past_instabilities = analysis::LoadPath::PastFolds::jump;
+  std::string past_instabilities = "jump";   // an analysis::InstabilityPolicies name
   std::string restart_file;               // start from a checkpoint of an earlier run (empty: undeformed)
   double restart_theta_y = 60.0;          // which one [deg]
   bool restart_from_last_state = false;   // the last converged state of a stopped run instead
@@ -43,6 +44,7 @@ struct LoadingParameters {
 };
 
 const std::vector<std::string>& loading_types();
-const std::vector<std::string>& instability_methods();   // "stop", "jump", "arc-length": LoadPath::PastFolds
+// The policy of 'Loading/past instabilities' (with the arc-length steps where it uses them).
+std::shared_ptr<const analysis::InstabilityPolicy> instability_policy(const LoadingParameters& loading);
 
 }  // namespace spatula::app

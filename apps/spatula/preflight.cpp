@@ -1,6 +1,7 @@
 #include "preflight.hpp"
 
 #include "checkpoint.hpp"
+#include "analysis/instability_policy.hpp"
 #include "resource_limits.hpp"
 #include "mesh/mesh_summary.hpp"
 #include "io/output_directory.hpp"
@@ -50,7 +51,7 @@ constexpr double usable_memory = 0.9;   // of the tightest memory limit
 // inertia) whatever the linear solver: an iterative solver then saves no peak memory.
 double solver_bytes(solvers::LinearSolverType type, const Scene& scene, double unknowns)
 {
-  const double jumps = scene.loading.past_instabilities == analysis::LoadPath::PastFolds::jump
+  const double jumps = instability_policy(scene.loading)->jumps()
                            ? MemoryModel::direct(unknowns) : 0.0;
   switch (type) {
     case solvers::LinearSolverType::gmres_ilu:
@@ -245,7 +246,7 @@ void check_memory(const Scene& scene, const MemoryEstimate& estimate)
         solver_bytes(solvers::LinearSolverType::gmres_amg, scene, double(estimate.unknowns));
     message << ", or the iterative solver 'Linear Solver/type' = 'gmres-amg' (about " << gigabytes(multigrid)
             << (multigrid <= usable_memory * estimate.available_bytes ? ", fits" : ", does not fit either")
-            << (scene.loading.past_instabilities == analysis::LoadPath::PastFolds::jump
+            << (instability_policy(scene.loading)->jumps()
                     ? ": the jumps past instabilities factor with MUMPS all the same" : "") << ")";
   }
   message << "; or " << estimate.available_remedy;

@@ -56,10 +56,7 @@ Run::Run(const Scene& scene, const geometry::SpatulaShape& shape, const mesh::He
       path_(*model_, newton_, root_ ? &out : nullptr, scene.output.convergence_tables), theta_s_(shape.theta_s()),
       young_(scene.material.young), initial_contact_(path_.last().contact_energy)
 {
-  if (scene.loading.past_instabilities == analysis::LoadPath::PastFolds::arc_length)
-    path_.enable_arc_length(scene.loading.arc_length_steps);
-  else
-    path_.set_past_folds(scene.loading.past_instabilities);
+  path_.set_instability_policy(instability_policy(scene.loading));
   const auto& contact = options_.contact;
   if (contact) reference_energy_ = 2.0 * system_->contact_area() * contact->work_of_adhesion();
   if (root_ && contact)

@@ -1,4 +1,5 @@
 #include "analysis/load_stepping.hpp"
+#include "analysis/instability_policy.hpp"
 #include "analysis/load_path_log.hpp"
 
 #include "parameters/parameter_validation.hpp"
@@ -90,7 +91,7 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
     resumed_control_.reset();
   }
   if (resumed_jump_) {   // a checkpointed jump first: it began at this state
-    const bool here = resumed_jump_->controlled == controlled && past_folds_ == PastFolds::jump &&
+    const bool here = resumed_jump_->controlled == controlled && jumps() &&
                       direction * (target - resumed_jump_->value) >= -1e-12 * std::max(1.0, std::abs(target));
     if (here) {
       if (auto failure = finish_resumed_jump(controlled, unit, on_point)) return failure;
@@ -152,7 +153,7 @@ std::optional<Failure> LoadPath::after_failed_attempt(Stepping& stepping, double
   ++stepping.failures;
   // Not where the cut leaves the smallest increment: the jump there descends from the same state anyway.
   const bool descend = !stepping.refused && jump_.descend_after_failures > 0 &&
-                       stepping.failures >= jump_.descend_after_failures && past_folds_ == PastFolds::jump &&
+                       stepping.failures >= jump_.descend_after_failures && jumps() &&
                        jump_.step_balance_tolerance > 0.0 &&
                        stepping.increment * stepping.steps.cut >= stepping.smallest;
   if (descend) {
@@ -205,7 +206,7 @@ std::variant<bool, Failure> LoadPath::crossed_snap(Stepping& stepping, double lo
     if (!stepping.steps.predict_after_failure) previous_increment_ = older_increment_ = 0.0;
     return true;
   }
-  if (past_folds_ == PastFolds::stop) {
+  if (!policy_ || !policy_->counts_snaps_as_jumps()) {
     Failure failure;
     failure.step = next_step();
     failure.load = load / stepping.unit;
@@ -269,37 +270,48 @@ std::variant<double, Failure> LoadPath::pass_fold(Master controlled, double unre
                                                   double smallest_increment, double unit,
                                                   const std::string& newton_failure, const Callback& on_point)
 {
-  auto& system = model_.system();
-  const char* name = load_name(controlled);
-  if (past_folds_ == PastFolds::jump) {   // an instability: jump at the unreached load to the far side
-    if (log_) *log_ << "  " << name << " = " << load_text(unreached / unit) << ": no equilibrium near the last one "
-                    << "(an instability); jumping to the next stable state" << std::endl;
-    auto failure = jump(controlled, unreached, on_point);
-    system.set_control(control);
-    if (failure) {
-      failure->load = unreached / unit;   // in the load's unit, as every other failure
-      return *failure;
-    }
-    return unreached;
-  }
-  if (past_folds_ == PastFolds::arc_length && direction > 0) {   // go round the fold, resume beyond
-    if (log_) *log_ << "  " << name << " = " << load_text(unreached / unit) << " not reachable on this branch: "
-                    << "arc-length continuation round the fold\n";
-    auto failure = arc_length(controlled, unreached, control, *arc_length_, unit,
-                              [&](const LoadPoint& p, const Vector& x) {
-                                if (detachment_test_ && detachment_test_(p)) detached_ = true;
-                                if (on_point) on_point(p, x);
-                              });
-    system.set_control(control);
-    if (failure && !detached_) return *failure;
-    return system.master(*x_, controlled);
-  }
+  if (policy_)
+    if (auto passed = policy_->pass(*this, Fold{controlled, unreached, control, direction, unit}, on_point))
+      return *passed;
   Failure failure;
   failure.step = next_step();
   failure.load = unreached / unit;
   failure.smallest_increment = smallest_increment / unit;
   failure.reason = newton_failure;
   return failure;
+}
+
+bool LoadPath::jumps() const { return policy_ && policy_->jumps(); }
+
+std::variant<double, Failure> LoadPath::jump_past(const Fold& fold, const Callback& on_point)
+{
+  if (log_)
+    *log_ << "  " << load_name(fold.controlled) << " = " << load_text(fold.unreached / fold.unit)
+          << ": no equilibrium near the last one (an instability); jumping to the next stable state" << std::endl;
+  auto failure = jump(fold.controlled, fold.unreached, on_point);
+  model_.system().set_control(fold.control);
+  if (failure) {
+    failure->load = fold.unreached / fold.unit;   // in the load's unit, as every other failure
+    return *failure;
+  }
+  return fold.unreached;
+}
+
+std::variant<double, Failure> LoadPath::continue_past(const Fold& fold, const ArcLengthParameters& parameters,
+                                                      const Callback& on_point)
+{
+  auto& system = model_.system();
+  if (log_)
+    *log_ << "  " << load_name(fold.controlled) << " = " << load_text(fold.unreached / fold.unit)
+          << " not reachable on this branch: arc-length continuation round the fold\n";
+  auto failure = arc_length(fold.controlled, fold.unreached, fold.control, parameters, fold.unit,
+                            [&](const LoadPoint& p, const Vector& x) {
+                              if (detachment_test_ && detachment_test_(p)) detached_ = true;
+                              if (on_point) on_point(p, x);
+                            });
+  system.set_control(fold.control);
+  if (failure && !detached_) return *failure;
+  return system.master(*x_, fold.controlled);
 }
 
 void LoadPath::take_step(const Vector& state, const LoadPoint& point, double increment, const std::string& table,

@@ -17,6 +17,7 @@
 
 namespace spatula::analysis {
 
+class InstabilityPolicy;
 using discretization::Master;
 using discretization::Vector;
 
@@ -133,15 +134,24 @@ public:
   std::optional<Failure> arc_length(Master controlled, double resume_above, discretization::MasterControl control,
                                     const ArcLengthParameters& parameters, double unit, const Callback& on_point);
 
-  // How to get past a fold (an instability): stop (default), jump at fixed load, or arc-length continuation.
-  enum class PastFolds { stop, jump, arc_length };
-  void set_past_folds(PastFolds mode) { past_folds_ = mode; }
+  // How to get past a fold (an instability): the policy (instability_policy.hpp: stop, jump at fixed load, or
+  // arc-length continuation); none: stop.
+  void set_instability_policy(std::shared_ptr<const InstabilityPolicy> policy) { policy_ = std::move(policy); }
   void set_jump_parameters(const JumpParameters& parameters) { jump_ = parameters; }
-  void enable_arc_length(const ArcLengthParameters& parameters)
-  {
-    arc_length_ = parameters;
-    past_folds_ = PastFolds::arc_length;
-  }
+  // Where a step met a fold: the controlled master, the load it could not reach (internal units), which masters are
+  // prescribed, the sense of travel (+1, -1) and the load's unit.
+  struct Fold {
+    Master controlled;
+    double unreached;
+    discretization::MasterControl control;
+    double direction, unit;
+  };
+  // The means a policy passes a fold by: a jump at the unreached load to the next stable state, or arc-length
+  // continuation round the fold until the load passes the unreached one. Each returns the load reached beyond the
+  // fold (stepping resumes there) or why the path stops.
+  std::variant<double, Failure> jump_past(const Fold& fold, const Callback& on_point);
+  std::variant<double, Failure> continue_past(const Fold& fold, const ArcLengthParameters& parameters,
+                                              const Callback& on_point);
   // Jumps at fixed `controlled` = value from the current state to a stable equilibrium (see JumpParameters).
   std::optional<Failure> jump(Master controlled, double value, const Callback& on_point);
 
@@ -254,8 +264,8 @@ private:
   std::optional<StepControllerState> resumed_control_;   // carried by a restart (LoadPoint::step_control)
   int next_step() const { return step_offset_ + static_cast<int>(points_.size()); }
   double started_ = 0.0;
-  std::optional<ArcLengthParameters> arc_length_;
-  PastFolds past_folds_ = PastFolds::stop;
+  std::shared_ptr<const InstabilityPolicy> policy_;
+  bool jumps() const;   // the policy jumps at fixed load (early descents, a checkpointed jump)
   JumpParameters jump_;
   std::unique_ptr<solvers::MumpsSolver> descent_solver_;   // LDL^T of the descents: one analysis for the whole path
   std::function<bool(const LoadPoint&)> detachment_test_;

@@ -14,6 +14,7 @@
 // state lies in the flat Lennard-Jones tail, where it used to run its 500 iterations without confirming.)
 #include "contact/adhesion.hpp"
 #include "mesh/box_mesh.hpp"
+#include "analysis/instability_policy.hpp"
 #include "analysis/load_stepping.hpp"
 
 #include <Teuchos_DefaultComm.hpp>
@@ -125,7 +126,7 @@ struct BarPath {
     model = Teuchos::rcp(new solvers::SpatulaModel(system, linear->lows_factory()));
     newton = std::make_unique<solvers::NewtonSolver>(model, newton_parameters, *linear);
     path = std::make_unique<analysis::LoadPath>(*model, *newton, nullptr, false);
-    path->set_past_folds(analysis::LoadPath::PastFolds::jump);
+    path->set_instability_policy(analysis::InstabilityPolicies::instance().make("jump", {}));
     jump_parameters.step_balance_tolerance = 1e-4 * side * side * adhesion.lennard_jones.work_of_adhesion();
     path->set_jump_parameters(jump_parameters);
     steps.initial = 0.2;
@@ -296,7 +297,7 @@ TEST(PullOffFold, TheLoadPathUsesTheEquilibriumSolverItIsGiven)
   BarPath alone(jump), counted(jump);
   CountingSolver counting(*counted.newton);
   counted.path = std::make_unique<analysis::LoadPath>(*counted.model, counting, nullptr, false);
-  counted.path->set_past_folds(analysis::LoadPath::PastFolds::jump);
+  counted.path->set_instability_policy(analysis::InstabilityPolicies::instance().make("jump", {}));
   jump.step_balance_tolerance = 1e-4 * BarPath::side * BarPath::side * alone.bar.law.work_of_adhesion();
   counted.path->set_jump_parameters(jump);
   const double target = 4.0;   // past the fold (about 2.6 nm): a jump on the way
@@ -311,4 +312,46 @@ TEST(PullOffFold, TheLoadPathUsesTheEquilibriumSolverItIsGiven)
   }
   EXPECT_TRUE(std::any_of(b.begin(), b.end(), [](const analysis::LoadPoint& p) { return p.after_jump; }));
   EXPECT_GE(counting.calls, static_cast<int>(b.size()) - 1);   // every converged step came through it
+}
+
+// The instability policies are a registry: a policy added by name is the one the path asks at the fold, without an
+// edit to the load path. Here one that records where it was asked and then stops the path there: the lift ends at
+// the analytic fold (about 2.6 nm) with a failure, and the policy saw that load.
+TEST(PullOffFold, AnInstabilityPolicyAddedByNameIsAskedAtTheFold)
+{
+  struct Recorded {
+    int folds = 0;
+    double unreached = 0.0;
+  };
+  auto recorded = std::make_shared<Recorded>();
+  class RecordAndStop : public analysis::InstabilityPolicy {
+  public:
+    explicit RecordAndStop(std::shared_ptr<Recorded> recorded) : recorded_(std::move(recorded)) {}
+    bool jumps() const override { return false; }
+    bool counts_snaps_as_jumps() const override { return false; }
+    std::optional<std::variant<double, analysis::Failure>> pass(analysis::LoadPath&, const analysis::LoadPath::Fold& fold,
+                                                               const analysis::LoadPath::Callback&) const override
+    {
+      ++recorded_->folds;
+      recorded_->unreached = fold.unreached / fold.unit;
+      return std::nullopt;   // stop with Newton's failure
+    }
+
+  private:
+    std::shared_ptr<Recorded> recorded_;
+  };
+  auto& policies = analysis::InstabilityPolicies::instance();
+  policies.add("record and stop", [recorded](const analysis::ArcLengthParameters&) {
+    return std::make_shared<const RecordAndStop>(recorded);
+  });
+  const auto names = policies.names();
+  EXPECT_NE(std::find(names.begin(), names.end(), "record and stop"), names.end());
+  BarPath bar_path(analysis::JumpParameters{});
+  bar_path.path->set_instability_policy(policies.make("record and stop", {}));
+  const auto failure = bar_path.lift_to(4.0);
+  ASSERT_TRUE(failure.has_value());
+  EXPECT_EQ(recorded->folds, 1);
+  EXPECT_NEAR(failure->load, recorded->unreached, 1e-12);
+  EXPECT_GT(recorded->unreached, 2.0);   // at the fold, not before it
+  EXPECT_LT(recorded->unreached, 3.0);
 }
