@@ -67,6 +67,7 @@ VARIANTS = {
         ('elimination-after-full-step', False,
          [('Nonlinear Solver/Front Elimination/use', 'after the full step', 'string')]),
         ('soft-mode-line-search', False, [('Nonlinear Solver/Front Elimination/use', 'soft mode', 'string')]),
+        ('contact-quadrature-8', False, [('Adhesion/quadrature', 8, 'int')]),
     ],
     'coarse-rotation-to-40': [
         ('default', False, []),
