@@ -247,6 +247,15 @@ void check_checkpoint(const Scene& scene, const discretization::NodeSpace& nodes
   if (stored_history.size() < 5 || in->read_doubles(group + "/masters").size() != discretization::master_count ||
       in->read_doubles(group + "/displacements").size() != 3 * static_cast<std::size_t>(nodes.node_count()))
     throw parameters::InputError(restart_key(scene) + ": checkpoint '" + label + "' is incomplete");
+  // The stage it lies in must be one of this scene's path (a scene without loading follows none).
+  if (!scene.loading.stages.empty() && in->exists(group + "/stage")) {
+    const auto stage = static_cast<int>(in->read_doubles(group + "/stage").at(0));
+    const auto stages = static_cast<int>(scene.loading.stages.size());
+    if (stage < 0 || stage >= stages)
+      throw parameters::InputError(restart_key(scene) + ": checkpoint '" + label + "' lies in stage " +
+                                   std::to_string(stage + 1) + " of its path, but this scene has " +
+                                   std::to_string(stages) + " stage(s) ('Loading/type', 'Loading/Stages')");
+  }
 }
 
 analysis::LoadPoint read_checkpoint(const Scene& scene, const discretization::DiscreteSystem& system,

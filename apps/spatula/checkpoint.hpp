@@ -66,8 +66,9 @@ void read_anchors(const Scene& scene, const discretization::DiscreteSystem& syst
 RunRecord read_run_record(const Scene& scene);
 
 // Checks, before anything is computed or written, that the scene's restart file holds its checkpoint and that the
-// checkpoint was made for this geometry, mesh, enrichment and material; throws parameters::InputError naming
-// 'Loading/restart file' and what does not match. `nodes` is this scene's node space.
+// checkpoint was made for this geometry, mesh, enrichment and material and lies in a stage of this scene's path;
+// throws parameters::InputError naming 'Loading/restart file' and what does not match. `nodes` is this scene's node
+// space.
 void check_checkpoint(const Scene& scene, const discretization::NodeSpace& nodes);
 
 // Reads the scene's checkpoint into x and returns the path history (checked by check_checkpoint before).

@@ -54,6 +54,9 @@ struct CgroupFiles {
 
 std::vector<CgroupFiles> memory_cgroups()
 {
+  std::vector<std::string> own;   // this process' groups, one line per hierarchy
+  std::ifstream cgroup("/proc/self/cgroup");
+  for (std::string entry; std::getline(cgroup, entry);) own.push_back(entry);
   std::vector<CgroupFiles> groups;
   std::ifstream mountinfo("/proc/self/mountinfo");
   for (std::string line; std::getline(mountinfo, line);) {
@@ -67,8 +70,7 @@ std::vector<CgroupFiles> memory_cgroups()
     const bool v2 = type == "cgroup2";
     const bool v1 = type == "cgroup" && ("," + options + ",").find(",memory,") != std::string::npos;
     if (!v1 && !v2) continue;
-    std::ifstream own("/proc/self/cgroup");
-    for (std::string entry; std::getline(own, entry);) {
+    for (const auto& entry : own) {
       const auto first = entry.find(':'), second = entry.find(':', first + 1);
       if (first == std::string::npos || second == std::string::npos) continue;
       const std::string controllers = entry.substr(first + 1, second - first - 1);
@@ -143,7 +145,7 @@ std::vector<MemoryLimit> memory_limits(int ranks)
 
 MemoryLimit tightest(const std::vector<MemoryLimit>& limits)
 {
-  if (limits.empty()) return {unlimited, ""};
+  if (limits.empty()) return {unlimited, "", ""};
   return *std::min_element(limits.begin(), limits.end(),
                            [](const MemoryLimit& a, const MemoryLimit& b) { return a.bytes < b.bytes; });
 }

@@ -5,7 +5,6 @@
 #include "progress_report.hpp"
 
 #include "io/checked_write.hpp"
-#include "parameters/parameter_validation.hpp"
 #include "solvers/out_of_memory.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
@@ -231,10 +230,6 @@ void Run::start()
       history.step_control = record.step_control;
     }
     path_.restart(*x, history, scene_.resume);
-    if (path_stage_.index < 0 || path_stage_.index >= static_cast<int>(loading.stages.size()))
-      throw parameters::InputError("'Loading/restart file' = '" + loading.restart_file + "': its state is in stage " +
-                                   std::to_string(path_stage_.index + 1) + " of its path, but this scene has " +
-                                   std::to_string(loading.stages.size()) + " stage(s)");
     if (root_)
       out_ << "restart from '" << restart_label(loading) << "' of " << loading.restart_file << " (step "
            << history.step << ", u_z " << history.lift << " nm"

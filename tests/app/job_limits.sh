@@ -14,14 +14,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 source "$here/rotation_scene.sh"
 enter_scratch_directory
 export OPENBLAS_NUM_THREADS=1 OMPI_MCA_btl=self OMPI_MCA_pml=ob1
-failures=0
-fail() { echo "FAIL $*"; failures=$((failures + 1)); }
-checked=0
-passed() { [ "$failures" -eq "$checked" ] && echo "ok   $*"; checked=$failures; }
-wait_for_step() {   # log file, step number (at most 120 s)
-  for _ in $(seq 2400); do grep -q "^step \+$2 " "$1" 2>/dev/null && return 0; sleep 0.05; done
-  return 1
-}
+check_counts
 no_crash() {   # log, case
   ! grep -qE "terminate called|Segmentation fault|core dumped|Signal:|Aborted|PMIX ERROR|ORTE_ERROR" "$1" ||
     { fail "$2: crash text"; cat "$1"; }

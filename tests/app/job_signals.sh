@@ -15,14 +15,7 @@ source "$here/rotation_scene.sh"
 enter_scratch_directory
 export OMPI_MCA_btl=self OMPI_MCA_pml=ob1
 unset OPENBLAS_NUM_THREADS
-failures=0
-fail() { echo "FAIL $*"; failures=$((failures + 1)); }
-checked=0
-passed() { [ "$failures" -eq "$checked" ] && echo "ok   $*"; checked=$failures; }
-wait_for_step() {   # log file, step number (at most 120 s)
-  for _ in $(seq 2400); do grep -q "^step \+$2 " "$1" 2>/dev/null && return 0; sleep 0.05; done
-  return 1
-}
+check_counts
 stopped_cleanly() {   # case, directory, status, expected exit, expected text in FAILURE.txt
   [ "$3" -eq "$4" ] || fail "$1: exit $3, expected $4"
   [ ! -e "$2" ] && [ ! -e "$2.partial" ] || fail "$1: a directory that looks complete or staging left"

@@ -3,7 +3,8 @@
 # the coarse pull-off as a rotate and a lift stage give the same curve.csv as the fixed types (every column but the
 # wall time; the stage column keeps the names 'rotation' and 'lift'). A path of three stages (rotate, lift, slide x on
 # the stiction law) names its stages in the curve and ends each at its target; interrupted in its last stage and
-# resumed, it ends where the uninterrupted run ends. Bad stage lists are refused (exit 2) naming the stage.
+# resumed, it ends where the uninterrupted run ends. Bad stage lists, and a restart from a stage the path does not
+# have, are refused (exit 2) naming the stage.
 # On two ranks, a run stopped inside its second stage and resumed ends where the one-rank uninterrupted run ends.
 # usage: load_stages.sh <spatula> <source directory> <mpiexec> [mpiexec flags...]
 set -u
@@ -15,10 +16,7 @@ flags=("$@")
 here=$(cd "$(dirname "$0")" && pwd)
 source "$here/rotation_scene.sh"
 enter_scratch_directory
-failures=0
-fail() { echo "FAIL $*"; failures=$((failures + 1)); }
-checked=0
-passed() { [ "$failures" -eq "$checked" ] && echo "ok   $*"; checked=$failures; }
+check_counts
 without_wall_time() { cut -d, -f1-22,24 "$1"; }   # (column 23: wall_s)
 stage() {   # name, kind, target, extra parameters
   echo "<ParameterList name=\"$1\"><Parameter name=\"kind\" type=\"string\" value=\"$2\"/><Parameter name=\"target\" type=\"double\" value=\"$3\"/>${4:-}</ParameterList>"
@@ -152,6 +150,21 @@ bad free-slide-frictionless "stage 'up' of 'Loading/Stages': 'free slide' = true
   "$(stage up lift 10 '<Parameter name="free slide" type="bool" value="true"/>')"
 bad no-stages "needs at least one stage in 'Loading/Stages'"
 bad comma "a stage's name is a column of curve.csv" "$(stage 'a,b' lift 3)"
+# A checkpoint that lies in a stage this scene's path does not have (the lift of a stopped two-stage run, restarted
+# by a one-stage rotation) is refused before anything is written.
+rotation_scene two 10 "" '<Parameter name="type" type="string" value="lift"/><Parameter name="final lift" type="double" value="40"/><Parameter name="final lift relative" type="bool" value="true"/>' \
+  '<Parameter name="checkpoint interval" type="double" value="0.0001"/>' | sed 's#<Parameter name="type" type="string" value="rotation"/>##' > two.xml
+"$app" two.xml > two.log 2>&1 &
+pid=$!
+for _ in $(seq 2400); do grep -q "^step \+[0-9]\+ \+lift " two.log && break; sleep 0.05; done
+kill -TERM "$pid"
+wait "$pid"
+rotation_scene one 12 "" '<Parameter name="restart file" type="string" value="two.incomplete/checkpoints.h5"/><Parameter name="restart from" type="string" value="last state"/>' > one.xml
+status=0
+"$app" one.xml > one.log 2>&1 || status=$?
+[ "$status" -eq 2 ] && grep -q "input error: .*checkpoint 'last state' lies in stage 2 of its path, but this scene has 1 stage" one.log &&
+  [ ! -e one ] && [ ! -e one.partial ] && [ ! -e one.incomplete ] ||
+  fail "a restart from another path's later stage: exit $status, $(tail -n 1 one.log)"
 passed "bad stage lists refused by name"
 
 [ "$failures" -eq 0 ] && echo "PASS" || echo "$failures failure(s)"

@@ -3,7 +3,9 @@
 # parameters> [<extra Output parameters>]]] prints a coarse frictionless rotation scene (steps of at most 2 deg, smallest 0.01, no mesh output);
 # lift_scene <directory> <law> <restart file> <theta_y> <final lift> <lift step> [<extra Adhesion parameters> [<extra
 # Loading parameters> [<extra Output parameters>]]] prints a lift from a rotation's checkpoint at theta_y, by the final
-# lift from there in steps of the lift step (no mesh output).
+# lift from there in steps of the lift step (no mesh output). check_counts starts a test's tally: fail <what> counts a
+# failure, passed <what> prints "ok" for a case that added none; wait_for_step <log> <step> waits (at most 120 s) for
+# that converged step's progress line.
 rotation_scene() {
   cat <<XML
 <ParameterList>
@@ -60,4 +62,15 @@ enter_scratch_directory() {
 # at the default 1e-6 runs agree to about 3e-5 of M_y, since the refactor rule decides from measured times).
 tight_newton() {
   sed 's#<ParameterList name="Output">#<ParameterList name="Nonlinear Solver"><Parameter name="absolute tolerance" type="double" value="1e-9"/></ParameterList>\n  <ParameterList name="Output">#'
+}
+
+check_counts() {
+  failures=0
+  checked=0
+}
+fail() { echo "FAIL $*"; failures=$((failures + 1)); }
+passed() { [ "$failures" -eq "$checked" ] && echo "ok   $*"; checked=$failures; }
+wait_for_step() {
+  for _ in $(seq 2400); do grep -q "^step \+$2 " "$1" 2>/dev/null && return 0; sleep 0.05; done
+  return 1
 }
