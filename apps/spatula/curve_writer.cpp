@@ -32,7 +32,7 @@ CurveWriter::CurveWriter(const std::string& file, double young, double reference
   out_ << "step,stage,theta_y_deg,u_z_nm,M_y_nNnm,M_y_per_ER0^3,P_z_nN,P_z_per_ER0^2,Pi_int_1e-18J,"
           "Pi_ext_1e-18J,Pi_c_1e-18J,Pi_sa_1e-18J,Pi_ext_per_Pi_c0,Pi_int_per_Pi_c0,Pi_sa_per_Pi_c0,"
           "dissipated_per_Pi_c0,balance_error_per_Pi_c0,after_jump,contact_faces_active,contact_faces_skipped,"
-          "newton_iterations,negative_pivots,wall_s,u_x_nm\n";
+          "newton_iterations,negative_pivots,wall_s,u_x_nm,P_x_nN\n";
   commit_row();
   out_ << std::setprecision(10);
 }
@@ -51,7 +51,7 @@ void CurveWriter::write(const analysis::LoadPoint& p, const std::string& stage, 
        << 2 * p.external_work / reference_ << "," << internal(p) / reference_ << "," << sa / reference_
        << "," << 2 * p.dissipated / reference_ << "," << balance_error(p) << "," << (p.after_jump ? 1 : 0) << ","
        << p.active_faces << "," << p.skipped_faces << ","
-       << p.newton_iterations << "," << p.negative_pivots << "," << p.seconds << "," << p.slide << "\n";
+       << p.newton_iterations << "," << p.negative_pivots << "," << p.seconds << "," << p.slide << "," << 2 * p.slide_force << "\n";
   commit_row();
 }
 

@@ -95,6 +95,13 @@ void LoadingParameters::declare(Teuchos::ParameterList& loading)
   parameters::declare_int(jump, "maximum iterations", d.jump.maximum_iterations,
                           "iterations per jump (one restarted inside its descent counts those before the stop)",
                           Range::closed(1, 100000));
+  parameters::declare_string(jump, "method",
+                             parameters::name_of(d.jump.method, analysis::JumpParameters::method_names()),
+                             "how a descent iteration moves: shifted newton (a Newton step on the tangent shifted "
+                             "until positive definite, a line search on Pi) or trust region (truncated conjugate "
+                             "gradients on the tangent within a trust region, preconditioned by kept factors, "
+                             "following negative curvature; 'refactor' and 'reused factors' are then not used)",
+                             analysis::JumpParameters::method_names());
   parameters::declare_string(jump, "refactor",
                              parameters::name_of(d.jump.refactor, analysis::JumpParameters::refactor_names()),
                              "when a descent replaces its factors: count (after 'reused factors' further iterations) "
@@ -164,6 +171,8 @@ LoadingParameters LoadingParameters::from(const Teuchos::ParameterList& loading)
   std::sort(p.checkpoints.begin(), p.checkpoints.end());
   const auto& jump = loading.sublist("Jump");
   p.jump.maximum_iterations = jump.get<int>("maximum iterations");
+  p.jump.method = parameters::choice<analysis::JumpParameters::Method>(jump, "method",
+                                                                       analysis::JumpParameters::method_names());
   p.jump.refactor = parameters::choice<analysis::JumpParameters::Refactor>(jump, "refactor",
                                                                            analysis::JumpParameters::refactor_names());
   p.jump.reused_factors = jump.get<int>("reused factors");

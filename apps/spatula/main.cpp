@@ -177,8 +177,10 @@ void write_failure_note(const spatula::io::OutputDirectory& directory, const spa
   note << "spatula stopped before the end of its load path (exit code " << exit_code << ").\n"
        << "why: " << failure.reason << "\n"
        << "where: step " << failure.step << ", stage '" << stop.stage << "', load " << failure.load
-       << (stop.moved == spatula::discretization::Master::lift    ? " nm (u_z)"
-           : stop.moved == spatula::discretization::Master::slide ? " nm (u_x)" : " (deg)");
+       << (stop.force ? (stop.moved == spatula::discretization::Master::lift ? " nN (P_z)" : " nN (P_x)")
+           : stop.moved == spatula::discretization::Master::lift  ? " nm (u_z)"
+           : stop.moved == spatula::discretization::Master::slide ? " nm (u_x)"
+                                                                   : " (deg)");
   if (failure.smallest_increment > 0.0)
     note << ", not reached after cutting the increment to " << failure.smallest_increment;
   note << "\nresults up to the last converged state: curve.csv, mesh_states.xmf (this directory)\n";
@@ -317,7 +319,7 @@ int main(int argc, char** argv)
     if (scene.resume) scene.loading.restart_file = app::resumed_checkpoint_file(scene);
     app::agree(*comm, [&] { open_output(run, summary, directory, fields, out); }, true);
     if (root) watch_output(*directory, scene);
-    if (root && scene.resume) out << "spatula: resuming the stopped run " << run.resume_from << "\n";
+    if (root && scene.resume) out << "spatula: resuming the stopped run " << run.resume_from << std::endl;   // (tests wait for it)
     if (scene.loading.type != app::LoadingType::none) {
       const auto stop =
           app::run_simulation(scene, *run.shape, run.mesh, run.partition, comm, directory.get(), fields.get(), out);

@@ -49,9 +49,12 @@ private:
   RunRecord record_at(const analysis::LoadPoint& p) const;   // what a resumed run needs besides the state at p
   void write_last_state(const Vector& x, const analysis::LoadPoint& p);   // collective
   void write_checkpoint_at(double theta_y);                              // collective
-  double load_of(const analysis::LoadPoint& p) const   // the current stage's motion: theta_y [deg], u_z or u_x [nm]
+  // The current stage's load: theta_y [deg], u_z or u_x [nm], P_z or P_x [nN, full spatula].
+  double load_of(const analysis::LoadPoint& p) const { return load_of(p, stage()); }
+  double load_of(const analysis::LoadPoint& p, const Stage& stage) const
   {
-    return motion_of(p, stage().master());
+    if (!stage.force()) return motion_of(p, stage.master());
+    return 2.0 * (stage.master() == Master::lift ? p.force : p.slide_force);
   }
   double released_fraction(const analysis::LoadPoint& p) const
   {

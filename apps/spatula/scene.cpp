@@ -87,11 +87,14 @@ Scene read_scene(Teuchos::ParameterList user)
     throw parameters::InputError("parameter 'Loading/free slide during lift' = true needs 'Adhesion/law' = 'stiction' "
                                  "(got '" + scene.adhesion.settings.law + "'): without tangential adhesion nothing "
                                  "holds the spatula in X and the system is singular");
-  for (const auto& stage : scene.loading.stages)
-    if (scene.loading.type == LoadingType::stages && stage.free_slide && scene.adhesion.settings.law != "stiction")
-      throw parameters::InputError("stage '" + stage.name + "' of 'Loading/Stages': 'free slide' = true needs "
+  for (const auto& stage : scene.loading.stages) {
+    const bool free_in_x = stage.free_slide || stage.kind == StageKind::slide_force;
+    if (scene.loading.type == LoadingType::stages && free_in_x && scene.adhesion.settings.law != "stiction")
+      throw parameters::InputError("stage '" + stage.name + "' of 'Loading/Stages': " +
+                                   (stage.free_slide ? "'free slide' = true" : "kind 'slide x force'") + " needs "
                                    "'Adhesion/law' = 'stiction' (got '" + scene.adhesion.settings.law + "'): without "
                                    "tangential adhesion nothing holds the spatula in X and the system is singular");
+  }
   if (scene.adhesion.settings.anchor_at_restart) {
     if (scene.loading.restart_file.empty())
       throw parameters::InputError("parameter 'Adhesion/stiction anchors' = 'restart state' needs a state to restart "

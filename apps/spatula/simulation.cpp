@@ -243,7 +243,7 @@ void Run::start()
       path_.resume_jump(std::move(*jump));
     }
   } else {   // the first stage begins at the start
-    path_stage_ = PathStage{0, motion_of(path_.last(), loading.stages.front().master())};
+    path_stage_ = PathStage{0, load_of(path_.last(), loading.stages.front())};
   }
   if (root_)
     curve_ = std::make_unique<CurveWriter>(directory_->file("curve.csv"), young_, reference_energy_,
@@ -263,7 +263,7 @@ std::optional<analysis::Failure> Run::follow_load_path(int& interrupted_by)
     for (auto index = static_cast<std::size_t>(path_stage_.index); index < stages.size(); ++index) {
       const Stage& stage = stages[index];
       if (path_stage_.index != static_cast<int>(index))   // entering it (a restart inside it keeps its start)
-        path_stage_ = PathStage{static_cast<int>(index), motion_of(path_.last(), stage.master())};
+        path_stage_ = PathStage{static_cast<int>(index), load_of(path_.last(), stage)};
       const double target = stage.target + (stage.relative ? path_stage_.start : 0.0);
       bool detached = false;
       failure = follow_stage(stage, target, detached);
@@ -296,10 +296,14 @@ std::optional<analysis::Failure> Run::follow_stage(const Stage& stage, double ta
     if (target < current) std::reverse(stops.begin(), stops.end());
   }
   stops.push_back(target);
-  const double unit = stage.kind == StageKind::rotate ? degree : 1.0;
-  const double offset = stage.kind == StageKind::rotate ? theta_s_ : 0.0;   // the rotation counts from theta_s
+  // The rotation counts in radians from theta_s; a force in the half model (the app's forces are the full spatula's).
+  const double unit = stage.kind == StageKind::rotate ? degree : stage.force() ? 0.5 : 1.0;
+  const double offset = stage.kind == StageKind::rotate ? theta_s_ : 0.0;
   for (double stop : stops) {
-    auto failure = path_.advance(stage.master(), stop * unit - offset, stage.control(), stage.steps, unit, on_point);
+    auto failure =
+        stage.force()
+            ? path_.advance_force(stage.master(), stop * unit, stage.control(), stage.steps, unit, on_point)
+            : path_.advance(stage.master(), stop * unit - offset, stage.control(), stage.steps, unit, on_point);
     detached = path_.detached();
     if (failure || detached) return failure;
     if (stage.kind == StageKind::rotate && stage.checkpoints &&
@@ -311,6 +315,13 @@ std::optional<analysis::Failure> Run::follow_stage(const Stage& stage, double ta
 
 std::optional<Stop> Run::finish(std::optional<analysis::Failure> failure, int interrupted_by)
 {
+  // Under a dead load, no equilibrium at a larger force: the spatula detaches at the largest force it carries.
+  if (!interrupted_by && failure && failure->largest_force && options_.contact) {
+    if (root_)
+      out_ << "detachment: under a prescribed force the end face carries at most " << load_of(path_.last())
+           << " nN (" << stage().name << "); beyond it no state holds the load\n";
+    failure.reset();
+  }
   // No equilibrium beyond a state where most of the pad has let go: that is the detachment.
   if (!interrupted_by && failure && !out_of_memory_ && options_.contact && released_fraction(path_.last()) > 0.5) {
     if (root_)
@@ -334,6 +345,7 @@ std::optional<Stop> Run::finish(std::optional<analysis::Failure> failure, int in
   stop.signal = interrupted_by;
   stop.stage = stage().name;
   stop.moved = stage().master();
+  stop.force = stage().force();
   if (failure && !out_of_memory_ && path_.jump_in_progress())   // a descent stopped at its iteration limit
     failure->reason += "; the descent's state is checkpointed with the last state: a restart from it ('Loading/restart "
                        "from' = 'last state') with a larger 'Loading/Jump/maximum iterations' goes on from there";

@@ -21,6 +21,7 @@ struct Stop {
   bool checkpointed = false;         // 'last state' written to checkpoints.h5
   std::string stage = "rotation";    // the stage it stopped in (its name)
   discretization::Master moved = discretization::Master::rotation;   // what that stage moves (the load's unit)
+  bool force = false;                // that stage moves the force on it [nN], not the motion
 };
 
 // "rotation", "lift", "slide": a motion of the end face in messages.

@@ -23,7 +23,16 @@ const KindRules& rules(StageKind kind)
   static const KindRules rotate{"deg", {1.0, 0.01, 2.0}, true, false, true, true};
   static const KindRules lift{"nm", {2.0, 0.01, 5.0}, false, true, false, false};
   static const KindRules slide{"nm", {2.0, 0.01, 5.0}, true, false, false, false};
-  return kind == StageKind::rotate ? rotate : kind == StageKind::lift ? lift : slide;
+  static const KindRules lift_force{"nN", {1.0, 0.001, 5.0}, false, true, false, false};
+  static const KindRules slide_force{"nN", {1.0, 0.001, 5.0}, true, false, false, false};
+  switch (kind) {
+  case StageKind::rotate: return rotate;
+  case StageKind::lift: return lift;
+  case StageKind::slide: return slide;
+  case StageKind::lift_force: return lift_force;
+  case StageKind::slide_force: return slide_force;
+  }
+  return rotate;
 }
 
 Teuchos::ParameterList valid_stage(StageKind kind)
@@ -32,7 +41,8 @@ Teuchos::ParameterList valid_stage(StageKind kind)
   Teuchos::ParameterList valid;
   parameters::declare_string(valid, "kind", stage_kinds()[static_cast<int>(kind)],
                              "what the stage moves: rotate the end face (theta_y), lift it (u_z), slide it along X "
-                             "(u_x)", stage_kinds());
+                             "(u_x), or the net force on it along Z (lift force, P_z) or X (slide x force, P_x): a "
+                             "dead load, the face free to move along it", stage_kinds());
   parameters::declare_double(valid, "target", 0.0, std::string("where the stage ends [") + r.unit + "]",
                              parameters::Range::closed(kind == StageKind::rotate ? -180.0 : -1e4,
                                                        kind == StageKind::rotate ? 180.0 : 1e4));
@@ -54,20 +64,21 @@ Teuchos::ParameterList valid_stage(StageKind kind)
 
 const std::vector<std::string>& stage_kinds()
 {
-  static const std::vector<std::string> kinds = {"rotate", "lift", "slide x"};
+  static const std::vector<std::string> kinds = {"rotate", "lift", "slide x", "lift force", "slide x force"};
   return kinds;
 }
 
 Master Stage::master() const
 {
-  return kind == StageKind::rotate ? Master::rotation : kind == StageKind::lift ? Master::lift : Master::slide;
+  if (kind == StageKind::rotate) return Master::rotation;
+  return kind == StageKind::lift || kind == StageKind::lift_force ? Master::lift : Master::slide;
 }
 
 discretization::MasterControl Stage::control() const
 {
   discretization::MasterControl control;   // everything prescribed: the moved motion, and the others held
-  if (kind != StageKind::lift) control.prescribed[static_cast<int>(Master::lift)] = !free_lift;
-  if (kind == StageKind::lift) control.prescribed[static_cast<int>(Master::slide)] = !free_slide;
+  if (master() != Master::lift) control.prescribed[static_cast<int>(Master::lift)] = !free_lift;
+  if (master() == Master::lift) control.prescribed[static_cast<int>(Master::slide)] = !free_slide;
   return control;
 }
 
@@ -76,8 +87,9 @@ void declare_stages(Teuchos::ParameterList& loading)
   parameters::declare_sublist(loading, "Stages",
                               "with 'type' = stages: the load path, one sublist per stage in the order they run, "
                               "named as curve.csv's stage column shall name it, each with 'kind' (rotate, lift, slide "
-                              "x), 'target' [deg or nm], and optionally 'relative', 'Steps', 'free lift' (rotate, "
-                              "slide x), 'free slide' (lift), 'checkpoints' (rotate)");
+                              "x, lift force, slide x force), 'target' [deg, nm or nN], and optionally 'relative', "
+                              "'Steps', 'free lift' (rotate, slide x, slide x force), 'free slide' (lift, lift "
+                              "force), 'checkpoints' (rotate)");
 }
 
 std::vector<Stage> read_stages(const Teuchos::ParameterList& list)
@@ -92,12 +104,13 @@ std::vector<Stage> read_stages(const Teuchos::ParameterList& list)
     for (const char* required : {"kind", "target"})
       if (!user.isParameter(required))
         throw parameters::InputError("stage '" + key + "' has no '" + required + "' (" +
-                                     (std::string(required) == "kind" ? "rotate, lift or slide x" : "where it ends") + ")");
+                                     (std::string(required) == "kind" ? "rotate, lift, slide x, lift force or slide x force"
+                                                                      : "where it ends") + ")");
     const auto& kind_name = user.isType<std::string>("kind") ? user.get<std::string>("kind") : std::string();
     const auto kind = parameters::choice_named<StageKind>(kind_name, stage_kinds());
     if (!kind)
       throw parameters::InputError("parameter '" + key + "/kind' = '" + parameters::shorten(kind_name) +
-                                   "': allowed kinds are rotate, lift, slide x");
+                                   "': allowed kinds are rotate, lift, slide x, lift force, slide x force");
     parameters::validate(user, valid_stage(*kind), key);
     Stage stage;
     stage.kind = *kind;

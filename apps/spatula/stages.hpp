@@ -1,6 +1,7 @@
 #pragma once
 // A load path as data: an ordered list of stages, each moving one motion of the end face (rotate it, lift it, slide
-// it along X) to a target, with its own step control and the end-face motions it leaves free. A scene writes them
+// it along X) or the force on it (pull it along Z, push it along X) to a target, with its own step control and the
+// end-face motions it leaves free. A scene writes them
 // in 'Loading/Stages' ('Loading/type' = stages), or keeps the fixed types: 'rotation' is the one-stage path
 // [rotation], 'lift' the two-stage path [rotation, lift], with the same results.
 #include "analysis/step_control.hpp"
@@ -13,21 +14,24 @@
 
 namespace spatula::app {
 
-// What a stage moves: in the order of stage_kinds() ("rotate", "lift", "slide x").
-enum class StageKind { rotate, lift, slide };
+// What a stage moves: in the order of stage_kinds() ("rotate", "lift", "slide x", "lift force", "slide x force").
+enum class StageKind { rotate, lift, slide, lift_force, slide_force };
 const std::vector<std::string>& stage_kinds();
 
 struct Stage {
   std::string name;            // curve.csv's stage column, messages: the stage's sublist name
   StageKind kind = StageKind::rotate;
-  double target = 0.0;         // rotate: theta_y [deg]; lift: u_z [nm]; slide: u_x [nm] of the face centre
+  // rotate: theta_y [deg]; lift, slide: u_z, u_x [nm] of the face centre; lift force, slide force: the net P_z, P_x
+  // on the end face [nN, full spatula]
+  double target = 0.0;
   bool relative = false;       // the target counted from where the stage starts
   analysis::StepParameters steps;
-  bool free_lift = false;      // rotate, slide: zero net Z force on the face (else u_z held)
-  bool free_slide = false;     // lift: zero net X force on the face (else u_x held)
+  bool free_lift = false;      // rotate, slide (x force): zero net Z force on the face (else u_z held)
+  bool free_slide = false;     // lift (force): zero net X force on the face (else u_x held)
   bool checkpoints = false;    // rotate: stop at 'Loading/checkpoints at theta_y' on the way and write them
 
-  discretization::Master master() const;
+  discretization::Master master() const;   // the motion it moves, or the one its force drives
+  bool force() const { return kind == StageKind::lift_force || kind == StageKind::slide_force; }
   // Which end-face motions are prescribed while it goes (the moved one, and those it holds).
   discretization::MasterControl control() const;
 };

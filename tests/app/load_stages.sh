@@ -3,7 +3,7 @@
 # the coarse pull-off as a rotate and a lift stage give the same curve.csv as the fixed types (every column but the
 # wall time; the stage column keeps the names 'rotation' and 'lift'). A path of three stages (rotate, lift, slide x on
 # the stiction law) names its stages in the curve and ends each at its target; interrupted in its last stage and
-# resumed, it ends where the uninterrupted run ends. Bad stage lists, and a restart from a stage the path does not
+# resumed, it ends where the uninterrupted run ends. Force stages end at their forces, or at the largest one. Bad stage lists, and a restart from a stage the path does not
 # have, are refused (exit 2) naming the stage.
 # On two ranks, a run stopped inside its second stage and resumed ends where the one-rank uninterrupted run ends.
 # usage: load_stages.sh <spatula> <source directory> <mpiexec> [mpiexec flags...]
@@ -90,6 +90,41 @@ print(f"three stages: {len(rows) - 1} states, u_z {float(start['u_z_nm']):.2f} -
 PY
 passed "three stages named in the curve, each at its target"
 
+# 2b. Force stages (stiction): rotate to 20 deg, pull the face with P_z = 3 nN, push it along X with P_x = 2 nN: each
+# ends at its force, the face held in X while pulled and in Z while pushed. Asked for a pull of 1000 nN, the path ends
+# at the largest pull the spatula carries (a detachment under load control: exit 0, named in the log).
+force_stages() {   # directory, pull target, push stage
+  rotation_scene "$1" 20 | sed 's#value="frictionless"#value="stiction"#' > force-base.xml
+  as_stages force-base.xml "$1" "$(stage peel rotate 20)" "$(stage pull 'lift force' "$2")" ${3:+"$3"}
+}
+force_stages forces 3 "$(stage push 'slide x force' 2)" > forces.xml
+"$app" forces.xml > forces.log 2>&1 || fail "force stages: exit $?"
+python3 - forces/curve.csv <<'PY' || fail "force stages: the forces are not where the stages end"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+pull = [r for r in rows if r['stage'] == 'pull']
+push = [r for r in rows if r['stage'] == 'push']
+assert pull and push, 'a force stage took no step'
+assert abs(float(pull[-1]['P_z_nN']) - 3) < 1e-6, pull[-1]['P_z_nN']
+assert abs(float(push[-1]['P_x_nN']) - 2) < 1e-6, push[-1]['P_x_nN']
+assert all(float(r['u_x_nm']) == float(pull[0]['u_x_nm']) for r in pull), 'the face moved in X while pulled'
+assert all(float(r['u_z_nm']) == float(pull[-1]['u_z_nm']) for r in push), 'the face moved in Z while pushed'
+assert float(pull[-1]['u_z_nm']) > float(pull[0]['u_z_nm']), 'the pull did not lift the face'
+assert float(push[-1]['u_x_nm']) > float(push[0]['u_x_nm']), 'the push did not move the face along X'
+print(f"force stages: P_z 3 nN at u_z {float(pull[-1]['u_z_nm']):.3f} nm, P_x 2 nN at u_x {float(push[-1]['u_x_nm']):.3f} nm")
+PY
+force_stages limit 1000 > limit.xml
+"$app" limit.xml > limit.log 2>&1 || fail "a pull beyond the largest force: exit $?"
+grep -q "^detachment: under a prescribed force the end face carries at most [0-9.]* nN (pull)" limit.log ||
+  fail "a pull beyond the largest force: no detachment in the log"
+python3 - limit/curve.csv <<'PY' || fail "a pull beyond the largest force: the curve does not rise to it"
+import csv, sys
+pull = [float(r['P_z_nN']) for r in csv.DictReader(open(sys.argv[1])) if r['stage'] == 'pull']
+assert pull[-1] == max(pull) and pull[-1] > 5, pull[-3:]
+print(f"the largest pull: {pull[-1]:.4f} nN after {len(pull)} force steps")
+PY
+passed "force stages end at their forces; beyond the largest, detachment under load control"
+
 # 3. Stopped inside the last stage and resumed: the uninterrupted run's end.
 three_stages stopped | sed 's#<Parameter name="directory"#<Parameter name="checkpoint interval" type="double" value="0.0001"/>&#' > stopped.xml
 "$app" stopped.xml > stopped.log 2>&1 &
@@ -148,6 +183,8 @@ bad free-slide-in-rotation "unknown parameter 'Loading/Stages/peel/free slide'" 
   "$(stage peel rotate 10 '<Parameter name="free slide" type="bool" value="true"/>')"
 bad free-slide-frictionless "stage 'up' of 'Loading/Stages': 'free slide' = true needs 'Adhesion/law' = 'stiction'" \
   "$(stage up lift 10 '<Parameter name="free slide" type="bool" value="true"/>')"
+bad slide-force-frictionless "stage 'push' of 'Loading/Stages': kind 'slide x force' needs 'Adhesion/law' = 'stiction'" \
+  "$(stage push 'slide x force' 1)"
 bad no-stages "needs at least one stage in 'Loading/Stages'"
 bad comma "a stage's name is a column of curve.csv" "$(stage 'a,b' lift 3)"
 # A checkpoint that lies in a stage this scene's path does not have (the lift of a stopped two-stage run, restarted

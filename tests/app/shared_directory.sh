@@ -76,7 +76,7 @@ wait_for_step killed.log 3 || fail "the run to be killed did not start"
 kill -9 "$killed"; wait "$killed" 2>/dev/null
 [ -f out.lock ] && [ -d out.partial ] || fail "kill -9 should leave out.partial and its (released) lock file"
 "$app" scene.xml --resume > resume.log 2>&1 & resume=$!
-for _ in $(seq 1200); do grep -q "^spatula: resuming" resume.log && break; sleep 0.1; done
+for _ in $(seq 6000); do grep -q "^spatula: resuming" resume.log && break; sleep 0.02; done
 kill -STOP "$resume"
 status=0
 "$app" scene.xml > fresh.log 2>&1 || status=$?

@@ -56,7 +56,7 @@ std::optional<Failure> LoadPath::arc_length(Master controlled, double resume_abo
   Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: arc-length continuation"));
   auto& system = model_.system();
   control.prescribed[static_cast<int>(controlled)] = true;
-  system.set_control(control);
+  set_control(control);
   const double start = system.master(*x_, controlled);
   ContinuationParameter exposed(model_, controlled);
 

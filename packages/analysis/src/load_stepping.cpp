@@ -21,49 +21,22 @@ LoadPath::LoadPath(solvers::SpatulaModel& model, const solvers::EquilibriumSolve
                    bool convergence_tables)
     : model_(model), equilibrium_(equilibrium), log_(log), tables_(convergence_tables),
       x_(model.system().create_vector()), previous_(model.system().create_vector()),
-      older_(model.system().create_vector()), started_(now())
+      older_(model.system().create_vector()),
+      minimizer_(model, equilibrium, log, convergence_tables)
 {
   auto& system = model_.system();
-  system.set_control({{true, true, true}});
-  points_.push_back(measure(*x_, 0, -1));
+  system.set_control({{true, true, true}});   // (no factors yet)
+  history_.append(measure(*x_, 0, -1));
   previous_->assign(*x_);
-}
-
-LoadPoint LoadPath::measure(const Vector& x, int iterations, int negative_pivots) const
-{
-  auto& system = model_.system();
-  const auto evaluation = system.evaluate(x, nullptr, false);
-  LoadPoint point;
-  point.step = next_step();
-  point.rotation = system.master(x, Master::rotation);
-  point.lift = system.master(x, Master::lift);
-  point.slide = system.master(x, Master::slide);
-  point.moment = evaluation.master_residual[0];
-  point.force = evaluation.master_residual[1];
-  point.slide_force = evaluation.master_residual[2];
-  point.internal_energy = evaluation.internal_energy;
-  point.contact_energy = evaluation.contact_energy;
-  point.active_faces = evaluation.active_contact_faces;
-  point.skipped_faces = evaluation.skipped_contact_faces;
-  point.newton_iterations = iterations;
-  point.negative_pivots = negative_pivots;
-  point.seconds = now() - started_;
-  if (!points_.empty()) {
-    const auto& last = points_.back();
-    point.dissipated = last.dissipated;
-    point.external_work = last.external_work + 0.5 * (last.moment + point.moment) * (point.rotation - last.rotation) +
-                          0.5 * (last.force + point.force) * (point.lift - last.lift) +
-                          0.5 * (last.slide_force + point.slide_force) * (point.slide - last.slide);
-  }
-  return point;
 }
 
 // The state of one advance(): where the path is, the next increment, and what the failed attempts since the last
 // converged state say.
 struct LoadPath::Stepping {
   Master controlled;
+  bool force;                              // the dead load on it is the load, not its value
   const char* name;                        // of the controlled load, for the log
-  discretization::MasterControl control;   // which masters are prescribed
+  discretization::MasterControl control;   // which masters are prescribed, and the dead loads
   const StepParameters& steps;
   double unit, direction, smallest;   // smallest: the minimum increment (less a rounding margin)
   double value, increment;            // the load reached and the next increment
@@ -76,14 +49,39 @@ struct LoadPath::Stepping {
 std::optional<Failure> LoadPath::advance(Master controlled, double target, discretization::MasterControl control,
                                          const StepParameters& steps, double unit, const Callback& on_point)
 {
-  auto& system = model_.system();
   control.prescribed[static_cast<int>(controlled)] = true;
-  system.set_control(control);
-  const double value = system.master(*x_, controlled);
+  set_control(control);
+  const double value = model_.system().master(*x_, controlled);
   const double direction = target >= value ? 1.0 : -1.0;
-  const double smallest = steps.minimum * unit * (1 - 1e-12);
-  Stepping stepping{controlled, load_name(controlled), control, steps, unit, direction, smallest, value,
-                    steps.initial * unit, FailedLoad(direction, steps.minimum * unit, steps.cut)};
+  Stepping stepping{controlled, false, load_name(controlled, false), control, steps, unit, direction,
+                    steps.minimum * unit * (1 - 1e-12), value, steps.initial * unit,
+                    FailedLoad(direction, steps.minimum * unit, steps.cut)};
+  return follow(stepping, target, on_point);
+}
+
+std::optional<Failure> LoadPath::advance_force(Master loaded, double target, discretization::MasterControl control,
+                                               const StepParameters& steps, double unit, const Callback& on_point)
+{
+  const int m = static_cast<int>(loaded);
+  const auto& now = last();
+  const double value = loaded == Master::rotation ? now.moment : loaded == Master::lift ? now.force : now.slide_force;
+  control.prescribed[m] = false;
+  control.applied[m] = value;   // the load the face carries: no jump as the stage begins
+  set_control(control);
+  const double direction = target >= value ? 1.0 : -1.0;
+  Stepping stepping{loaded, true, load_name(loaded, true), control, steps, unit, direction,
+                    steps.minimum * unit * (1 - 1e-12), value, steps.initial * unit,
+                    FailedLoad(direction, steps.minimum * unit, steps.cut)};
+  return follow(stepping, target, on_point);
+}
+
+std::optional<Failure> LoadPath::follow(Stepping& stepping, double target, const Callback& on_point)
+{
+  auto& system = model_.system();
+  const Master controlled = stepping.controlled;
+  const auto& steps = stepping.steps;
+  const double unit = stepping.unit, direction = stepping.direction;
+  const auto& control = stepping.control;
   previous_increment_ = older_increment_ = 0.0;   // no predictor across a change of the controlled load
   if (resumed_control_) {   // a resumed run goes on where the stopped one was
     if (resumed_control_->increment > 0.0) stepping.increment = resumed_control_->increment;
@@ -91,11 +89,11 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
     resumed_control_.reset();
   }
   if (resumed_jump_) {   // a checkpointed jump first: it began at this state
-    const bool here = resumed_jump_->controlled == controlled && jumps() &&
+    const bool here = !stepping.force && resumed_jump_->controlled == controlled && jumps() &&
                       direction * (target - resumed_jump_->value) >= -1e-12 * std::max(1.0, std::abs(target));
     if (here) {
       if (auto failure = finish_resumed_jump(controlled, unit, on_point)) return failure;
-      system.set_control(control);
+      set_control(control);
       stepping.value = system.master(*x_, controlled);
       stepping.failed.forget();
       stepping.increment = steps.initial * unit;
@@ -111,7 +109,8 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
     stepping.increment =
         stepping.failed.limit(std::min(stepping.increment, direction * (target - stepping.value)), stepping.value);
     const double load = stepping.value + direction * stepping.increment;
-    predict(*trial, controlled, load, stepping.increment, steps.predictor);
+    predict(*trial, stepping.increment, steps.predictor);
+    set_load(stepping, *trial, load);
     std::ostringstream table;
     const auto result = equilibrium_.solve(*trial, tables_ ? &table : nullptr, stepping.failed.known());
     if (!result.converged) {
@@ -130,19 +129,6 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
   return std::nullopt;
 }
 
-std::optional<Failure> LoadPath::finish_resumed_jump(Master controlled, double unit, const Callback& on_point)
-{
-  const auto jump_state = std::move(*resumed_jump_);
-  resumed_jump_.reset();
-  if (log_)
-    *log_ << "  " << load_name(controlled) << " = " << load_text(jump_state.value / unit)
-          << ": going on with the jump's energy descent from its checkpoint (iteration " << jump_state.iterations
-          << ")" << std::endl;
-  auto failure = jump(controlled, jump_state.value, on_point, &jump_state);
-  if (failure) failure->load = jump_state.value / unit;   // in the load's unit, as every other failure
-  return failure;
-}
-
 std::optional<Failure> LoadPath::after_failed_attempt(Stepping& stepping, double load, Vector& trial,
                                                       const std::string& newton_failure, const std::string& table,
                                                       const Callback& on_point)
@@ -152,7 +138,7 @@ std::optional<Failure> LoadPath::after_failed_attempt(Stepping& stepping, double
           << newton_failure << ")";
   ++stepping.failures;
   // Not where the cut leaves the smallest increment: the jump there descends from the same state anyway.
-  const bool descend = !stepping.refused && jump_.descend_after_failures > 0 &&
+  const bool descend = !stepping.force && !stepping.refused && jump_.descend_after_failures > 0 &&
                        stepping.failures >= jump_.descend_after_failures && jumps() &&
                        jump_.step_balance_tolerance > 0.0 &&
                        stepping.increment * stepping.steps.cut >= stepping.smallest;
@@ -175,6 +161,16 @@ std::optional<Failure> LoadPath::after_failed_attempt(Stepping& stepping, double
   stepping.increment *= stepping.steps.cut;
   if (stepping.increment < stepping.smallest) {   // no equilibrium near the last one: past the fold, or stop
     const double unreached = stepping.value + stepping.direction * stepping.increment / stepping.steps.cut;
+    if (stepping.force) {   // a limit point under a dead load: no state beyond it holds the load
+      Failure failure;
+      failure.step = next_step();
+      failure.load = unreached / stepping.unit;
+      failure.smallest_increment = stepping.increment / stepping.steps.cut / stepping.unit;
+      failure.reason = "no equilibrium at a larger " + std::string(stepping.name) + " (" + newton_failure +
+                       "): the largest the face carries on this branch is " + load_text(stepping.value / stepping.unit);
+      failure.largest_force = true;
+      return failure;
+    }
     auto beyond = pass_fold(stepping.controlled, unreached, stepping.control, stepping.direction,
                             stepping.increment / stepping.steps.cut, stepping.unit, newton_failure, on_point);
     if (auto* failure = std::get_if<Failure>(&beyond)) return *failure;
@@ -194,7 +190,7 @@ std::variant<bool, Failure> LoadPath::crossed_snap(Stepping& stepping, double lo
 {
   // The energy the step released: near zero on a smooth path; large when Newton crossed a snap within the step
   // and landed on another branch.
-  const double released = released_energy(point);
+  const double released = history_.released_energy(point);
   if (!(jump_.step_balance_tolerance > 0.0 && std::abs(released) > jump_.step_balance_tolerance)) return false;
   if (stepping.increment * stepping.steps.cut >= stepping.smallest) {
     if (log_)
@@ -215,9 +211,7 @@ std::variant<bool, Failure> LoadPath::crossed_snap(Stepping& stepping, double lo
                      " nN nm, full spatula) and instabilities are set to stop";
     return failure;
   }
-  point.after_jump = true;   // the smallest step still crosses the snap: it is the jump
-  point.released = released;
-  point.dissipated += released;
+  mark_jump(point, released);   // the smallest step still crosses the snap: it is the jump
   if (log_)
     *log_ << "  snap within the smallest step to " << stepping.name << " = " << load_text(load / stepping.unit)
           << ": counted as a jump, released " << load_text(2.0 * released) << " nN nm (full spatula)\n";
@@ -241,28 +235,35 @@ void LoadPath::take_converged_step(Stepping& stepping, const Vector& trial, Load
   take_step(trial, point, taken, table, on_point);
 }
 
-const char* LoadPath::load_name(Master controlled)
+const char* LoadPath::load_name(Master controlled, bool force)
 {
   // The rotation master is the end face's rotation from the initial inclination (theta_y - theta_s).
+  if (force) return controlled == Master::rotation ? "moment" : controlled == Master::lift ? "lift force" : "slide force";
   return controlled == Master::rotation ? "rotation theta_y - theta_s" : controlled == Master::lift ? "lift" : "slide";
 }
 
-
-void LoadPath::predict(Vector& trial, Master controlled, double load, double increment,
-                       StepParameters::Predictor predictor) const
+void LoadPath::predict(Vector& trial, double increment, StepParameters::Predictor predictor) const
 {
   const auto w = predictor_weights(predictor, increment, previous_increment_, older_increment_);
   trial.update(w.previous, *previous_, w.older, *older_, 0.0);
   trial.update(w.current, *x_, 1.0);
-  model_.system().set_master(trial, controlled, load);
 }
 
-double LoadPath::released_energy(const LoadPoint& point) const
+void LoadPath::set_control(const discretization::MasterControl& control) const
 {
-  // The work of the reactions (trapezoidal rule) minus the change of Pi_int + Pi_c since the last point.
-  const auto& last = points_.back();
-  return (point.external_work - last.external_work) -
-         (point.internal_energy + point.contact_energy - last.internal_energy - last.contact_energy);
+  auto& system = model_.system();
+  if (system.control().prescribed != control.prescribed) equilibrium_.linear_solver().renew_factors();
+  system.set_control(control);
+}
+
+void LoadPath::set_load(Stepping& stepping, Vector& trial, double load) const
+{
+  if (!stepping.force) {
+    model_.system().set_master(trial, stepping.controlled, load);
+    return;
+  }
+  stepping.control.applied[static_cast<int>(stepping.controlled)] = load;
+  set_control(stepping.control);
 }
 
 std::variant<double, Failure> LoadPath::pass_fold(Master controlled, double unreached,
@@ -283,20 +284,6 @@ std::variant<double, Failure> LoadPath::pass_fold(Master controlled, double unre
 
 bool LoadPath::jumps() const { return policy_ && policy_->jumps(); }
 
-std::variant<double, Failure> LoadPath::jump_past(const Fold& fold, const Callback& on_point)
-{
-  if (log_)
-    *log_ << "  " << load_name(fold.controlled) << " = " << load_text(fold.unreached / fold.unit)
-          << ": no equilibrium near the last one (an instability); jumping to the next stable state" << std::endl;
-  auto failure = jump(fold.controlled, fold.unreached, on_point);
-  model_.system().set_control(fold.control);
-  if (failure) {
-    failure->load = fold.unreached / fold.unit;   // in the load's unit, as every other failure
-    return *failure;
-  }
-  return fold.unreached;
-}
-
 std::variant<double, Failure> LoadPath::continue_past(const Fold& fold, const ArcLengthParameters& parameters,
                                                       const Callback& on_point)
 {
@@ -309,7 +296,7 @@ std::variant<double, Failure> LoadPath::continue_past(const Fold& fold, const Ar
                               if (detachment_test_ && detachment_test_(p)) detached_ = true;
                               if (on_point) on_point(p, x);
                             });
-  system.set_control(fold.control);
+  set_control(fold.control);
   if (failure && !detached_) return *failure;
   return system.master(*x_, fold.controlled);
 }
@@ -322,34 +309,10 @@ void LoadPath::take_step(const Vector& state, const LoadPoint& point, double inc
   previous_->assign(*x_);
   x_->assign(state);
   previous_increment_ = increment;
-  points_.push_back(point);
+  history_.append(point);
   if (log_ && tables_) *log_ << table;
-  if (detachment_test_ && detachment_test_(points_.back())) detached_ = true;
-  if (on_point) on_point(points_.back(), *x_);
-}
-
-std::optional<LoadPoint> LoadPath::descend_early(Master controlled, double load, Vector& state)
-{
-  Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: early energy descent"));
-  ++early_descents_.tried;
-  state.assign(*x_);
-  model_.system().set_master(state, controlled, load);
-  const auto outcome = descend(state);
-  if (const auto* reason = std::get_if<std::string>(&outcome)) {
-    if (log_) *log_ << "  the descent found no stable state (" << *reason << ")\n";
-    return std::nullopt;
-  }
-  auto point = measure(state, std::get<int>(outcome), -1);
-  const double released = released_energy(point);
-  if (std::abs(released) > jump_.step_balance_tolerance) {
-    if (log_) *log_ << "  the descent released " << load_text(2.0 * released) << " nN nm (full spatula), more than "
-                    << "the step balance tolerance: a snap proper\n";
-    return std::nullopt;
-  }
-  ++early_descents_.taken;
-  if (log_) *log_ << "  the descent reached a state on this branch in " << std::get<int>(outcome)
-                  << " iterations (released " << load_text(2.0 * released) << " nN nm, full spatula): an ordinary step\n";
-  return point;
+  if (detachment_test_ && detachment_test_(last())) detached_ = true;
+  if (on_point) on_point(last(), *x_);
 }
 
 void LoadPath::accept(const Vector& x, int iterations, int negative_pivots, const Callback& on_point)
@@ -357,46 +320,37 @@ void LoadPath::accept(const Vector& x, int iterations, int negative_pivots, cons
   previous_->assign(*x_);
   x_->assign(x);
   previous_increment_ = older_increment_ = 0.0;
-  points_.push_back(measure(*x_, iterations, negative_pivots));
-  if (on_point) on_point(points_.back(), *x_);
+  history_.append(measure(*x_, iterations, negative_pivots));
+  if (on_point) on_point(last(), *x_);
 }
 
 std::optional<Failure> LoadPath::equilibrate(const Vector& guess, discretization::MasterControl control)
 {
-  model_.system().set_control(control);
+  set_control(control);
   auto x = model_.system().create_vector();
   x->assign(guess);
-  const auto outcome = descend(*x);   // robust from a far guess: energy descent, then Newton
-  if (const auto* reason = std::get_if<std::string>(&outcome)) {
+  const auto outcome = minimizer_.minimize(*x);   // robust from a far guess: energy descent, then Newton
+  if (!outcome.found) {
     Failure failure;
-    failure.reason = "no equilibrium from the initial guess: " + *reason;
+    failure.reason = "no equilibrium from the initial guess: " + outcome.failure;
     return failure;
   }
   LoadPoint start;
-  start.newton_iterations = std::get<int>(outcome);
+  start.newton_iterations = outcome.iterations;
   restart(*x, start);
   return std::nullopt;
 }
-
-double LoadPath::elapsed_seconds() const { return now() - started_; }
 
 void LoadPath::restart(const Vector& x, const LoadPoint& point, bool resume_step_control)
 {
   x_->assign(x);
   previous_->assign(x);
   previous_increment_ = older_increment_ = 0.0;
-  points_.clear();
   jump_in_progress_.reset();   // (resume_jump() after this sets the one to go on with)
   resumed_jump_.reset();
-  step_offset_ = point.step;
   if (resume_step_control) resumed_control_ = point.step_control;
   else resumed_control_.reset();
-  if (point.seconds > 0.0) started_ = now() - point.seconds;   // a resumed run's clock goes on
-  auto measured = measure(*x_, point.newton_iterations, point.negative_pivots);
-  measured.step = point.step;
-  measured.external_work = point.external_work;
-  measured.dissipated = point.dissipated;
-  points_.push_back(measured);
+  history_.restart(measure(*x_, point.newton_iterations, point.negative_pivots), point);
 }
 
 }  // namespace spatula::analysis

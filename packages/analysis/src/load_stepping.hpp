@@ -4,7 +4,9 @@
 //
 // Each converged step is a LoadPoint; the run stops at the target, or with a Failure naming the step, the load,
 // the smallest increment tried and the Newton diagnosis (never a silently accepted state).
+#include "analysis/load_history.hpp"
 #include "analysis/step_control.hpp"
+#include "solvers/energy_minimizer.hpp"
 #include "solvers/newton.hpp"
 
 #include <functional>
@@ -21,35 +23,9 @@ class InstabilityPolicy;
 using discretization::Master;
 using discretization::Vector;
 
-// One converged state on the load path (half-model values: the app doubles them for the full spatula).
-struct LoadPoint {
-  int step = 0;
-  double rotation = 0.0;     // alpha [rad] (theta_y = theta_s + alpha)
-  double lift = 0.0;         // w [nm], the face centre's displacement along the lift direction (spatula: u_z)
-  double slide = 0.0;        // s [nm], along the slide direction (spatula: X, held at 0)
-  double moment = 0.0;       // M_y on the face [nN nm]
-  double force = 0.0;        // force on the face along the lift direction (spatula: P_z) [nN]
-  double slide_force = 0.0;  // force on the face along the slide direction [nN]
-  double internal_energy = 0.0;   // Pi_int [nN nm]
-  double contact_energy = 0.0;    // Pi_c [nN nm]
-  int active_faces = 0, skipped_faces = 0;   // contact faces integrated / beyond the cut-off
-  double external_work = 0.0;     // int M dalpha + int P dw along the path [nN nm]
-  int newton_iterations = 0;
-  int negative_pivots = -1;
-  double seconds = 0.0;      // wall time since the run began
-  bool after_jump = false;   // the first state on the far side of an instability
-  double released = 0.0;     // energy released in that jump (Pi_int + Pi_c before minus after, at fixed load) [nN nm]
-  double dissipated = 0.0;   // energy released in all jumps so far [nN nm]
-  StepControllerState step_control;   // the controller's state after this point (a resumed run's start)
-};
-
-// The jump past an instability at fixed load: the total potential energy Pi = Pi_int + Pi_c is minimized from the
-// last stable state, with the load held, by Newton steps on a shifted tangent K + eta I (eta raised until the
-// LDL^T factorization shows no negative pivot, lowered again after good steps) and a line search on Pi that also
-// expands the step (negative curvature means going further lowers Pi more). It ends on a stable state on the far
-// side of the snap, confirmed by plain Newton, like a quasi-static snap with viscous dissipation: the energy
-// released in the jump is reported. A small gradient ends the descent only if plain Newton then converges (just
-// past a fold the gradient is small too, with no equilibrium near); with a shift, it is first re-tested unshifted.
+// The jump past an instability at fixed load: the energy minimizer (solvers/energy_minimizer.hpp) from the last
+// stable state, with the load held, to a stable state on the far side of the snap, like a quasi-static snap with
+// viscous dissipation: the energy released in the jump is reported.
 //
 // A snap can also hide inside a load step: Newton converges, but on another branch, and the work of the reactions
 // (trapezoidal rule) no longer matches the change of Pi_int + Pi_c over the step. A converged step whose imbalance
@@ -57,17 +33,7 @@ struct LoadPoint {
 // increment it is accepted as a jump, the imbalance being the energy it released. The same measure classifies a
 // descent's outcome: one that releases no more than the tolerance stayed on the branch (Newton had stalled where
 // there was no limit point) and is recorded as an ordinary step, not as a jump.
-struct JumpParameters {
-  // When a descent replaces its factors (-M^-1 f is a descent direction for any positive definite M, so factors made
-  // at an earlier state still serve): count, after `reused_factors` further iterations (while each takes at least
-  // half its step); cost, by the measured rate (DescentCost).
-  enum class Refactor { count, cost };
-  static const std::vector<std::string>& refactor_names();
-
-  int maximum_iterations = 500;
-  double shift_growth = 4.0;      // eta factor while the shifted tangent is indefinite
-  Refactor refactor = Refactor::count;
-  int reused_factors = 0;         // refactor = count; 0: a fresh factorization every iteration
+struct JumpParameters : solvers::MinimizerParameters {
   // After this many failed attempts in a row from one converged state, the energy descent is tried at the load of
   // the last one: taken as an ordinary step if it releases no more than the step balance tolerance (a micro-snap of
   // the peel front, which bisecting down to the smallest increment would reach only after many more failed
@@ -77,22 +43,6 @@ struct JumpParameters {
   // 0: never (bisect to the smallest increment, then jump).
   int descend_after_failures = 0;
   double step_balance_tolerance = 0.0;   // [nN nm, half model]; 0: not checked
-};
-
-// The cost rule of a descent's factors. A cycle is one factorization and the iterations its factors serve; its
-// yield is the decrease of Pi, its cost the wall time (the factorization and any indefinite tries before it
-// included). Fresh factors always serve one kept iteration (its yield is unknown until tried); after that the factors
-// serve the next iteration while the last one they served lowered Pi at least as fast per second as the cycle has
-// on average: the renewal rule, which keeps cheap solves with old factors where a factorization is dear (a fine mesh)
-// and ends each cycle after that one kept iteration where it is cheap.
-class DescentCost {
-public:
-  void factored(double seconds, double decrease);   // a fresh iteration's: a new cycle
-  // A kept iteration's; true: the factors serve the next iteration too.
-  bool keep(double seconds, double decrease);
-
-private:
-  double seconds_ = 0.0, decrease_ = 0.0;
 };
 
 // Arc-length continuation (LOCA) in the controlled master, used to go round folds of the load path.
@@ -106,6 +56,9 @@ struct Failure {
   double load = 0.0;          // the load value that could not be reached (deg or nm)
   double smallest_increment = 0.0;
   std::string reason;
+  // A force-controlled path (advance_force) found no equilibrium at a larger force: the largest force the face
+  // carries on this branch (under a dead load the limit point is not passed: beyond it no state holds the load).
+  bool largest_force = false;
 };
 
 class LoadPath {
@@ -115,9 +68,9 @@ public:
 
   // The current state (starts undeformed, rotation and lift zero).
   Vector& state() { return *x_; }
-  const LoadPoint& last() const { return points_.back(); }
-  const std::vector<LoadPoint>& points() const { return points_; }
-  double elapsed_seconds() const;   // wall time since the run began (a resumed run's included)
+  const LoadPoint& last() const { return history_.last(); }
+  const std::vector<LoadPoint>& points() const { return history_.points(); }
+  double elapsed_seconds() const { return history_.elapsed_seconds(); }   // a resumed run's included
 
   // Moves `controlled` from its current value to `target`; `control` says which masters are prescribed (the
   // controlled one always is; the others keep their values). Calls `on_point` after every converged step.
@@ -127,6 +80,13 @@ public:
   using Callback = std::function<void(const LoadPoint&, const Vector&)>;
   std::optional<Failure> advance(Master controlled, double target, discretization::MasterControl control,
                                  const StepParameters& steps, double unit, const Callback& on_point);
+  // The same with the dead load on the free master `loaded` as the load (MasterControl::applied; moment or force,
+  // half model): from the reaction the face carries at the current state to `target`, every step an equilibrium
+  // under that load. Where no equilibrium follows at a larger load (a limit point: the face cannot carry more) the
+  // path stops with a Failure marked largest_force; instabilities are not passed under a dead load. The load stays
+  // applied after the call (a later advance's control replaces it).
+  std::optional<Failure> advance_force(Master loaded, double target, discretization::MasterControl control,
+                                       const StepParameters& steps, double unit, const Callback& on_point);
 
   // Follows the path by arc-length in `controlled` from the current state (it may fall and rise again round a
   // fold) until it exceeds `resume_above` (in the direction of increasing load) or the step budget is spent.
@@ -137,7 +97,11 @@ public:
   // How to get past a fold (an instability): the policy (instability_policy.hpp: stop, jump at fixed load, or
   // arc-length continuation); none: stop.
   void set_instability_policy(std::shared_ptr<const InstabilityPolicy> policy) { policy_ = std::move(policy); }
-  void set_jump_parameters(const JumpParameters& parameters) { jump_ = parameters; }
+  void set_jump_parameters(const JumpParameters& parameters)
+  {
+    jump_ = parameters;
+    minimizer_.set_parameters(parameters);
+  }
   // Where a step met a fold: the controlled master, the load it could not reach (internal units), which masters are
   // prescribed, the sense of travel (+1, -1) and the load's unit.
   struct Fold {
@@ -185,10 +149,7 @@ public:
   };
   const EarlyDescents& early_descents() const { return early_descents_; }
   // The factorizations of the jumps' energy descents (null before the first descent).
-  const solvers::MumpsStatistics* descent_statistics() const
-  {
-    return descent_solver_ ? &descent_solver_->statistics() : nullptr;
-  }
+  const solvers::MumpsStatistics* descent_statistics() const { return minimizer_.statistics(); }
 
   // Replaces the current state by `guess` and solves for equilibrium at the current load (e.g. the pad pressed onto
   // a rough substrate before loading); the result becomes the path's first point (history reset).
@@ -203,13 +164,14 @@ public:
   void accept(const Vector& x, int iterations, int negative_pivots, const Callback& on_point);
 
 private:
-  LoadPoint measure(const Vector& x, int iterations, int negative_pivots) const;
+  LoadPoint measure(const Vector& x, int iterations, int negative_pivots) const
+  {
+    return history_.measure(model_.system(), x, iterations, negative_pivots);
+  }
   // The steps of `advance`: the predictor, the energy a converged step released, passing a fold (the controlled
   // load's value beyond it, or why the path stops there), and taking a converged step.
-  static const char* load_name(Master controlled);
-  void predict(Vector& trial, Master controlled, double load, double increment,
-               StepParameters::Predictor predictor) const;
-  double released_energy(const LoadPoint& point) const;
+  static const char* load_name(Master controlled, bool force = false);
+  void predict(Vector& trial, double increment, StepParameters::Predictor predictor) const;
   std::variant<double, Failure> pass_fold(Master controlled, double unreached,
                                           const discretization::MasterControl& control, double direction,
                                           double smallest_increment, double unit, const std::string& newton_failure,
@@ -221,6 +183,10 @@ private:
   // converged one that crossed a snap (true: cut back and try again; at the smallest increment it is the jump), and a
   // converged step taken (the increment grows after an easy one).
   struct Stepping;
+  std::optional<Failure> follow(Stepping& stepping, double target, const Callback& on_point);
+  void set_load(Stepping& stepping, Vector& trial, double load) const;   // the master's value or its dead load
+  // Sets which masters are prescribed (and the dead loads); where that changes, the kept factors are renewed.
+  void set_control(const discretization::MasterControl& control) const;
   std::optional<Failure> after_failed_attempt(Stepping& stepping, double load, Vector& trial,
                                               const std::string& newton_failure, const std::string& table,
                                               const Callback& on_point);
@@ -230,28 +196,6 @@ private:
   // The early descent of JumpParameters::descend_after_failures: the state it reached at `load` and its measure, if
   // it released no more than the step balance tolerance.
   std::optional<LoadPoint> descend_early(Master controlled, double load, Vector& state);
-  // The energy descent of a jump (LoadPath's comment above): iterations down to a small gradient, each with a line
-  // search on Pi, then plain Newton to confirm; the iterations it took, or why it found no stable state.
-  struct Descent;
-  // `resumed`: go on with a checkpointed descent (x is its state) from its shift and iteration count.
-  std::variant<int, std::string> descend(Vector& x, const JumpInProgress* resumed = nullptr);
-  std::optional<std::string> descend_to_small_gradient(Vector& x, Descent& descent, double small_gradient);
-  // After a descent iteration of a jump: its state x, shift and count into jump_in_progress_, then the descent watch.
-  void watch_descent(const Descent& descent, const Vector& x);
-  // One descent iteration's state at x: residual f, Pi, |f| and, with fresh factors (the tangent shifted by the
-  // descent's eta, factored), the negative pivots of their inertia.
-  struct DescentPoint {
-    bool admissible;
-    double energy, residual;
-    int negative_pivots;
-  };
-  DescentPoint descent_point(const Vector& x, Descent& descent, bool fresh, Vector& f);
-  // After an accepted descent step: whether the factors serve further iterations (the refactor rule), and the shift.
-  void after_descent_step(Descent& descent, bool fresh, double step, double decrease, double iteration_began);
-  double descent_line_search(const Vector& x, const Vector& direction, double energy, double slope, Vector& trial,
-                             double& best_energy) const;
-  solvers::MumpsSolver& descent_solver();
-
   solvers::SpatulaModel& model_;
   const solvers::EquilibriumSolver& equilibrium_;   // the corrector of every step
   std::ostream* log_;
@@ -259,15 +203,13 @@ private:
   Teuchos::RCP<Vector> x_, previous_, older_;   // the last three converged states of this advance
   double previous_increment_ = 0.0;   // x_ - previous_ in the load (0: no predictor)
   double older_increment_ = 0.0;      // previous_ - older_ in the load (0: no quadratic predictor)
-  std::vector<LoadPoint> points_;
-  int step_offset_ = 0;             // the step number of the path's first point (a restart's)
+  LoadHistory history_;
   std::optional<StepControllerState> resumed_control_;   // carried by a restart (LoadPoint::step_control)
-  int next_step() const { return step_offset_ + static_cast<int>(points_.size()); }
-  double started_ = 0.0;
+  int next_step() const { return history_.next_step(); }
   std::shared_ptr<const InstabilityPolicy> policy_;
   bool jumps() const;   // the policy jumps at fixed load (early descents, a checkpointed jump)
   JumpParameters jump_;
-  std::unique_ptr<solvers::MumpsSolver> descent_solver_;   // LDL^T of the descents: one analysis for the whole path
+  solvers::EnergyMinimizer minimizer_;   // of the jumps, early descents and equilibrate()
   std::function<bool(const LoadPoint&)> detachment_test_;
   bool detached_ = false;
   std::optional<JumpInProgress> jump_in_progress_, resumed_jump_;

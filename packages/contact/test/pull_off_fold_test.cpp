@@ -12,8 +12,7 @@
 // increments before the analytic fold, never past it, and its jump must release that energy. (Measured when written:
 // the last state 0.0011 nm before the fold at 2.5995 nm, 2.1342 against 2.1344 nN nm released; the descent's far
 // state lies in the flat Lennard-Jones tail, where it used to run its 500 iterations without confirming.)
-#include "contact/adhesion.hpp"
-#include "mesh/box_mesh.hpp"
+#include "adhering_bar.hpp"
 #include "analysis/instability_policy.hpp"
 #include "analysis/load_stepping.hpp"
 
@@ -26,108 +25,21 @@
 
 using namespace spatula;
 
-namespace {
-
-struct AnalyticBar {
-  laws::LennardJones law;
-  double mu = 1.0, height = 40.0;
-
-  double derivative(double g) const
-  {
-    double phi, dphi, d2phi;
-    law.exact(g, phi, dphi, d2phi);
-    return dphi;
-  }
-  double energy(double g) const
-  {
-    double phi, dphi, d2phi;
-    law.exact(g, phi, dphi, d2phi);
-    return phi;
-  }
-  double stretch_at(double g) const   // s with mu (s - 1/s) = phi'(g)
-  {
-    const double p = derivative(g);
-    return (p + std::sqrt(p * p + 4.0 * mu * mu)) / (2.0 * mu);
-  }
-  double lift(double g, double s) const { return (g - law.equilibrium_gap()) + height * (s - 1.0); }
-  double potential(double g, double s) const   // per unit area
-  {
-    return height * (0.5 * mu * (s * s - 1.0) - mu * std::log(s)) + energy(g);
-  }
-  double second_variation(double g) const
-  {
-    double phi, dphi, d2phi;
-    law.exact(g, phi, dphi, d2phi);
-    const double s = stretch_at(g);
-    return d2phi + mu * (1.0 + 1.0 / (s * s)) / height;
-  }
-};
-
-// A root of f in [a, b] (f(a) and f(b) of opposite signs) by bisection.
-double bisect(const std::function<double(double)>& f, double a, double b)
-{
-  const bool rising = f(a) < 0.0;
-  for (int k = 0; k < 200; ++k) {
-    const double middle = 0.5 * (a + b);
-    ((f(middle) < 0.0) == rising ? a : b) = middle;
-  }
-  return 0.5 * (a + b);
-}
-
-}  // namespace
+using test::bisect;
 
 // The bar of the header on a 1 x 1 x 8 box mesh, its model and a load path with jumps past folds and the app's
 // step balance check (1e-4 of the contact energy A w_adh): the energy line search can carry a Newton attempt just
 // past the fold down to the far branch, which the check catches and cuts back.
-struct BarPath {
-  static constexpr double side = 4.0;
-  AnalyticBar bar;
-  Teuchos::RCP<discretization::DiscreteSystem> system;
-  std::unique_ptr<solvers::LinearSolverFactory> linear;
-  Teuchos::RCP<solvers::SpatulaModel> model;
-  std::unique_ptr<solvers::NewtonSolver> newton;
+struct BarPath : test::AdheringBar {
   std::unique_ptr<analysis::LoadPath> path;
   analysis::StepParameters steps;
 
   BarPath(analysis::JumpParameters jump_parameters, const solvers::NewtonParameters& newton_parameters = {})
+      : AdheringBar(newton_parameters)
   {
-    mesh::BoxParameters box;
-    box.lengths = {side, side, bar.height};
-    box.elements = {1, 1, 8};
-    const auto mesh = mesh::box_mesh(box);
-    discretization::Constraints constraints;
-    constraints.fixed.push_back({mesh.nodes(mesh::Boundary::symmetry), 1});
-    for (std::int64_t n = 0; n < mesh.node_count(); ++n)
-      if (mesh.coordinates[n][2] == bar.height) constraints.rigid_nodes.push_back(n);
-    constraints.rigid_centre = {0.5 * side, 0.0, bar.height};
-
-    contact::AdhesionSettings adhesion;
-    adhesion.law = "frictionless";
-    adhesion.enrichment = discretization::Enrichment::q1c1;
-    adhesion.quadrature = 2;
-    adhesion.lennard_jones.r_reg = 0.8 * adhesion.lennard_jones.equilibrium_gap();
-    adhesion.lennard_jones.r_cut = 10.0;   // exact law below 5 nm, where every state here lies
-    adhesion.substrate_height = -adhesion.lennard_jones.equilibrium_gap();
-    bar.law = adhesion.lennard_jones;
-    discretization::SolidParameters solid;
-    solid.young = 2.0 * bar.mu;
-    solid.poisson = 0.0;
-
-    auto comm = Teuchos::DefaultComm<int>::getComm();
-    const auto partition = mesh::partition_mesh(mesh, comm->getSize());
-    system = Teuchos::rcp(new discretization::DiscreteSystem(
-        mesh, partition, constraints, solid, comm, {adhesion.enrichment, contact::make_contact_model(adhesion)}));
-    // Refactoring by count (lag), not by measured time (cost, the default): the path must not depend on the load
-    // of the machine. (With cost, once, beside a long run, Newton converged across the snap within the smallest
-    // step, and there was no descent to count.)
-    solvers::LinearSolverParameters linear_parameters;
-    linear_parameters.refactor = solvers::RefactorRule::lag;
-    linear = std::make_unique<solvers::LinearSolverFactory>(linear_parameters);
-    model = Teuchos::rcp(new solvers::SpatulaModel(system, linear->lows_factory()));
-    newton = std::make_unique<solvers::NewtonSolver>(model, newton_parameters, *linear);
     path = std::make_unique<analysis::LoadPath>(*model, *newton, nullptr, false);
     path->set_instability_policy(analysis::InstabilityPolicies::instance().make("jump", {}));
-    jump_parameters.step_balance_tolerance = 1e-4 * side * side * adhesion.lennard_jones.work_of_adhesion();
+    jump_parameters.step_balance_tolerance = 1e-4 * side * side * work_of_adhesion;
     path->set_jump_parameters(jump_parameters);
     steps.initial = 0.2;
     steps.maximum = 0.5;
@@ -354,4 +266,36 @@ TEST(PullOffFold, AnInstabilityPolicyAddedByNameIsAskedAtTheFold)
   EXPECT_NEAR(failure->load, recorded->unreached, 1e-12);
   EXPECT_GT(recorded->unreached, 2.0);   // at the fold, not before it
   EXPECT_LT(recorded->unreached, 3.0);
+}
+
+// Under a dead load on the lift master (advance_force) the bar's states are the analytic near branch at each force
+// F: phi'(g) = F / A = mu (s - 1/s), lift w = (g - g_eq) + H (s - 1). The largest force it carries is the law's
+// strongest attraction A phi'(g*) (phi''(g*) = 0, beyond the displacement-controlled fold's force): asked for more,
+// the path stops there with a failure marked largest_force, its last state within a few minimum increments of it.
+TEST(PullOffFold, UnderADeadLoadTheBarFollowsItsAnalyticBranchUpToTheLargestForce)
+{
+  BarPath bar_path(analysis::JumpParameters{});
+  const auto& bar = bar_path.bar;
+  const double area = BarPath::side * BarPath::side;
+  const double g_largest = bar.law.strongest_attraction_gap();
+  const double largest = area * bar.derivative(g_largest);
+  const auto lift = discretization::Master::lift;
+  auto failure = bar_path.path->advance_force(lift, 0.9 * largest, {}, bar_path.steps, 1.0, {});
+  ASSERT_FALSE(failure.has_value()) << failure->reason;
+  const auto& points = bar_path.path->points();
+  ASSERT_GE(points.size(), 4u);
+  EXPECT_NEAR(points.back().force, 0.9 * largest, 1e-6 * largest);
+  for (std::size_t k = 1; k < points.size(); ++k) {
+    const double pull = points[k].force;
+    const double g = bisect([&](double gap) { return bar.derivative(gap) - pull / area; }, bar.law.equilibrium_gap(),
+                            g_largest);
+    EXPECT_NEAR(points[k].lift, bar.lift(g, bar.stretch_at(g)), 1e-5) << "at the force " << pull;
+    EXPECT_FALSE(points[k].after_jump);
+  }
+  failure = bar_path.path->advance_force(lift, 1.2 * largest, {}, bar_path.steps, 1.0, {});
+  ASSERT_TRUE(failure.has_value());
+  EXPECT_TRUE(failure->largest_force) << failure->reason;
+  EXPECT_LE(bar_path.path->last().force, largest * (1.0 + 1e-6));
+  EXPECT_GT(bar_path.path->last().force, largest - 5.0 * bar_path.steps.minimum);
+  EXPECT_GT(failure->load, bar_path.path->last().force);
 }

@@ -501,6 +501,10 @@ struct DiscreteSystem::Implementation {
       Teuchos::broadcast(*comm, 0, Teuchos::outArg(reaction));
       result.master_residual[m] = reaction;
       if (unknown >= 0 && control.prescribed[m]) values[unknown] = 0.0;
+      if (!control.prescribed[m] && control.applied[m] != 0.0) {   // a dead load on a free master
+        if (unknown >= 0) values[unknown] -= control.applied[m];
+        result.load_potential -= control.applied[m] * master_value(x, static_cast<Master>(m));
+      }
     }
     if (damping > 0.0) {
       const auto anchor = damping_anchor->getData(0);

@@ -35,6 +35,9 @@ struct SolidParameters {
 // Which end-face masters are prescribed (their values are then taken from the state vector).
 struct MasterControl {
   std::array<bool, master_count> prescribed{true, true, true};
+  // The dead load on each free master (moment [nN nm], lift and slide forces [nN], half model): its potential
+  // -applied u joins Pi, its row of f is the reaction less it. Zero: the master is free of load.
+  std::array<double, master_count> applied{};
   // `moved` prescribed, the masters in `free` left free (zero net reaction), the others held.
   static MasterControl moving(Master moved, std::initializer_list<Master> free = {})
   {
@@ -53,7 +56,9 @@ struct Evaluation {
   int active_contact_faces = 0;    // contact faces integrated (all ranks)
   int skipped_contact_faces = 0;   // contact faces beyond the cut-off, not integrated
   std::array<double, master_count> master_residual{};   // moment [nN nm], lift and slide forces [nN] (half)
-  double energy() const { return internal_energy + contact_energy; }   // Pi = Pi_int + Pi_c, whose gradient is f
+  double load_potential = 0.0;     // -applied . u over the free masters with a dead load [nN nm] (0 without)
+  // Pi = Pi_int + Pi_c (+ the dead loads' potential), whose gradient is f
+  double energy() const { return internal_energy + contact_energy + load_potential; }
 };
 
 // What the system contains besides the solid: the contact enrichment and an adhesion model (none: no contact).

@@ -51,4 +51,27 @@ LinePoint search_energy_line(const std::function<LinePoint(double step)>& evalua
   return none;
 }
 
+LinePoint search_energy_decrease(const std::function<LinePoint(double step)>& evaluate, const LinePoint& origin)
+{
+  LinePoint best = origin;
+  best.step = 0.0;
+  double step = 1.0;
+  for (int evaluation = 0; evaluation < 30; ++evaluation) {
+    const LinePoint point = evaluate(step);
+    const bool sufficient = point.admissible && point.energy <= origin.energy + 1e-4 * step * origin.slope;
+    if (sufficient && point.energy < best.energy) {
+      best = point;
+      best.step = step;
+      if (step >= 1.0 && step < 64.0) {   // still descending: try further
+        step *= 2.0;
+        continue;
+      }
+      break;
+    }
+    if (best.step > 0.0) break;   // the expansion went too far: keep the best
+    step *= 0.5;
+  }
+  return best;
+}
+
 }  // namespace spatula::solvers

@@ -1,5 +1,8 @@
 #pragma once
-// A line search on the energy along Newton's direction, for problems with a potential Pi (f = dPi/dx): it looks for
+// The line searches on the energy Pi along a direction d, phi(alpha) = Pi(x + alpha d): Newton's (the zero of the
+// slope) and the energy minimizer's (sufficient decrease, with expansion).
+//
+// Newton's: a line search on the energy along Newton's direction, for problems with a potential Pi (f = dPi/dx): it looks for
 // the zero of the energy's slope  phi'(alpha) = f(x + alpha d) . d  on 0 < alpha <= maximum step, extrapolating past
 // Newton's step alpha = 1 as well as cutting it. Where a front of contact faces moves, Newton's step falls short
 // along the line (phi'(1) / phi'(0) near 1: the tangent stiffens ahead of the front) and full steps converge
@@ -31,5 +34,11 @@ struct EnergyLineSearchParameters {
 // caller's state is the last point evaluated.
 LinePoint search_energy_line(const std::function<LinePoint(double step)>& evaluate, const LinePoint& origin,
                              const EnergyLineSearchParameters& parameters);
+
+// The energy minimizer's: Armijo's sufficient decrease phi(alpha) <= phi(0) + 1e-4 alpha phi'(0), tried from
+// alpha = 1, halved while not met (at most 30 evaluations in all), and doubled while it is met with a lower phi (up
+// to alpha = 64: along a direction of negative curvature going further lowers Pi more). Needs only energies (slope
+// of `origin`: phi'(0) < 0). Returns the sufficient point of lowest energy, or the origin (step 0) if none.
+LinePoint search_energy_decrease(const std::function<LinePoint(double step)>& evaluate, const LinePoint& origin);
 
 }  // namespace spatula::solvers

@@ -2,6 +2,7 @@
 
 #include "parameters/parameter_validation.hpp"
 #include "solvers/inverse_preconditioner_factory.hpp"
+#include "solvers/renewal_rule.hpp"
 
 #include <Stratimikos_DefaultLinearSolverBuilder.hpp>
 #include <Teuchos_AbstractFactoryStd.hpp>
@@ -26,21 +27,6 @@ const std::vector<std::string>& refactor_rule_names()
 {
   static const std::vector<std::string> names = {"lag", "cost", "clock"};
   return names;
-}
-
-void RefactorCost::factored(double factorization_cost)
-{
-  cycle_cost_ = factorization_cost;
-  tangents_ = 1;
-}
-
-bool RefactorCost::keep(double last_tangent_solve_cost)
-{
-  if (tangents_ == 0) return false;   // nothing factored yet
-  cycle_cost_ += last_tangent_solve_cost;
-  if (last_tangent_solve_cost > cycle_cost_ / tangents_) return false;
-  ++tangents_;
-  return true;
 }
 
 double FactorWork::solve(const MumpsStatistics& statistics, bool symmetric)
@@ -112,8 +98,10 @@ int gmres_limit(const LinearSolverParameters& p)
 // MUMPS as a Thyra preconditioner: A^-1 itself. Keeps one MumpsSolver (and its symbolic analysis) per map.
 class MumpsPreconditionerFactory : public InversePreconditionerFactory {
 public:
-  MumpsPreconditionerFactory(LinearSolverParameters parameters, std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver)
-      : InversePreconditionerFactory("MUMPS"), parameters_(std::move(parameters)), solver_(std::move(solver))
+  MumpsPreconditionerFactory(LinearSolverParameters parameters, std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver,
+                             std::shared_ptr<bool> renew)
+      : InversePreconditionerFactory("MUMPS"), parameters_(std::move(parameters)), solver_(std::move(solver)),
+        renew_(std::move(renew))
   {
   }
 
@@ -131,10 +119,12 @@ public:
       solver->count_reuse();
     } else {
       solver->factor(*matrix);
+      *renew_ = false;
       served_ = 0;
       const auto& statistics = solver->statistics();
       cost_.factored(parameters_.refactor == RefactorRule::clock ? statistics.last_factorization_seconds
-                                                                 : FactorWork::factorization(statistics));
+                                                                 : FactorWork::factorization(statistics),
+                     0.0);   // its tangent yields with its solves, at the next keep
     }
     applications_at_init_ = solver->statistics().applications_since_factor;
     solve_seconds_at_init_ = solver->statistics().solve_seconds;
@@ -147,7 +137,7 @@ private:
   bool keep_factors(const MumpsSolver& solver, const Teuchos::Comm<int>& comm) const
   {
     const auto& statistics = solver.statistics();
-    if (statistics.factorizations == 0) return false;
+    if (statistics.factorizations == 0 || *renew_) return false;
     if (parameters_.refactor == RefactorRule::lag) {   // the same counts on every rank
       return parameters_.lag > 0 && served_ < parameters_.lag &&
              statistics.applications_since_factor - applications_at_init_ <= parameters_.lag_applications;
@@ -159,7 +149,7 @@ private:
     const double last_cost = parameters_.refactor == RefactorRule::clock
                                  ? statistics.solve_seconds - solve_seconds_at_init_
                                  : applications * FactorWork::solve(statistics, parameters_.mumps.symmetric);
-    int refactor = capped || !cost_.keep(last_cost) ? 1 : 0;
+    int refactor = capped || !cost_.keep(last_cost, 1.0) ? 1 : 0;
     // The clocks differ by rank (the operation counts do not): any rank that would refactor decides for all.
     Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, refactor, Teuchos::outArg(refactor));
     return refactor == 0;
@@ -167,44 +157,50 @@ private:
 
   LinearSolverParameters parameters_;
   std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver_;
+  std::shared_ptr<bool> renew_;   // LinearSolverFactory::renew_factors
   mutable int served_ = 0, applications_at_init_ = 0;   // tangents the factors served after their own
   mutable double solve_seconds_at_init_ = 0.0;          // MUMPS solve time when the last tangent came
-  mutable RefactorCost cost_;
+  mutable RenewalRule cost_;   // a tangent yields 1
 };
 
 // gmres-amg's preconditioner factories: each over the one hierarchy, with MUMPS as the fallback.
 class MultigridFactoryCreator : public Teuchos::AbstractFactory<Thyra::PreconditionerFactoryBase<double>> {
 public:
   MultigridFactoryCreator(LinearSolverParameters parameters, std::shared_ptr<const AlgebraicMultigrid> multigrid,
-                    std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver)
-      : parameters_(std::move(parameters)), multigrid_(std::move(multigrid)), solver_(std::move(solver))
+                          std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver, std::shared_ptr<bool> renew)
+      : parameters_(std::move(parameters)), multigrid_(std::move(multigrid)), solver_(std::move(solver)),
+        renew_(std::move(renew))
   {
   }
   Teuchos::RCP<Thyra::PreconditionerFactoryBase<double>> create() const override
   {
-    return multigrid_->preconditioner_factory(Teuchos::rcp(new MumpsPreconditionerFactory(parameters_, solver_)));
+    return multigrid_->preconditioner_factory(
+        Teuchos::rcp(new MumpsPreconditionerFactory(parameters_, solver_, renew_)));
   }
 
 private:
   LinearSolverParameters parameters_;
   std::shared_ptr<const AlgebraicMultigrid> multigrid_;
   std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver_;
+  std::shared_ptr<bool> renew_;
 };
 
 class MumpsFactoryCreator : public Teuchos::AbstractFactory<Thyra::PreconditionerFactoryBase<double>> {
 public:
-  MumpsFactoryCreator(LinearSolverParameters parameters, std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver)
-      : parameters_(std::move(parameters)), solver_(std::move(solver))
+  MumpsFactoryCreator(LinearSolverParameters parameters, std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver,
+                      std::shared_ptr<bool> renew)
+      : parameters_(std::move(parameters)), solver_(std::move(solver)), renew_(std::move(renew))
   {
   }
   Teuchos::RCP<Thyra::PreconditionerFactoryBase<double>> create() const override
   {
-    return Teuchos::rcp(new MumpsPreconditionerFactory(parameters_, solver_));
+    return Teuchos::rcp(new MumpsPreconditionerFactory(parameters_, solver_, renew_));
   }
 
 private:
   LinearSolverParameters parameters_;
   std::shared_ptr<Teuchos::RCP<MumpsSolver>> solver_;
+  std::shared_ptr<bool> renew_;
 };
 
 Teuchos::RCP<Teuchos::ParameterList> stratimikos_list(const LinearSolverParameters& p)
@@ -239,6 +235,7 @@ Teuchos::RCP<Teuchos::ParameterList> stratimikos_list(const LinearSolverParamete
 struct LinearSolverFactory::Implementation {
   LinearSolverParameters parameters;
   std::shared_ptr<Teuchos::RCP<MumpsSolver>> mumps = std::make_shared<Teuchos::RCP<MumpsSolver>>();
+  std::shared_ptr<bool> renew = std::make_shared<bool>(false);   // renew_factors()
   std::shared_ptr<const AlgebraicMultigrid> multigrid;   // gmres-amg only
   Teuchos::RCP<const Thyra::LinearOpWithSolveFactoryBase<double>> factory;
   MumpsStatistics empty;
@@ -256,11 +253,11 @@ LinearSolverFactory::LinearSolverFactory(const LinearSolverParameters& parameter
     impl.multigrid = std::make_shared<const AlgebraicMultigrid>(std::move(node_blocks), parameters.maximum_iterations);
   Stratimikos::DefaultLinearSolverBuilder builder;
   builder.setPreconditioningStrategyFactory(
-      Teuchos::rcp(new MumpsFactoryCreator(parameters, impl.mumps)),
+      Teuchos::rcp(new MumpsFactoryCreator(parameters, impl.mumps, impl.renew)),
       "MUMPS");
   if (impl.multigrid)
     builder.setPreconditioningStrategyFactory(
-        Teuchos::rcp(new MultigridFactoryCreator(parameters, impl.multigrid, impl.mumps)), "AMG");
+        Teuchos::rcp(new MultigridFactoryCreator(parameters, impl.multigrid, impl.mumps, impl.renew)), "AMG");
   using Ifpack2Factory = Thyra::Ifpack2PreconditionerFactory<discretization::CrsMatrix>;
   builder.setPreconditioningStrategyFactory(
       Teuchos::abstractFactoryStd<Thyra::PreconditionerFactoryBase<double>, Ifpack2Factory>(), "Ifpack2");
@@ -269,6 +266,8 @@ LinearSolverFactory::LinearSolverFactory(const LinearSolverParameters& parameter
 }
 
 LinearSolverFactory::~LinearSolverFactory() = default;
+
+void LinearSolverFactory::renew_factors() const { *implementation_->renew = true; }
 
 Teuchos::RCP<const Thyra::LinearOpWithSolveFactoryBase<double>> LinearSolverFactory::lows_factory() const
 {

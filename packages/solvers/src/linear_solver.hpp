@@ -7,7 +7,7 @@
 //              then needs a few iterations instead of one) until the solves it serves take more than
 //              `lag applications` preconditioner applications, or `lag` tangents have passed: the Newton
 //              directions stay exact (GMRES converges to the tolerance), only the factorizations are saved.
-//              With `refactor` = cost the decision is made from the modelled work instead (RefactorCost): a
+//              With `refactor` = cost the decision is made from the modelled work instead (RenewalRule, renewal_rule.hpp): a
 //              factorization is kept while the last tangent's solves cost less than the average cost per tangent of
 //              the current factorization's cycle (its factorization plus all the solves it served, over its
 //              tangents); that keeps the long-run cost per tangent near its minimum whatever the mesh size. The work
@@ -36,26 +36,9 @@ namespace spatula::solvers {
 // `automatic` is resolved before a factory is made (the app picks from the memory the mesh needs).
 enum class LinearSolverType { mumps, gmres_ilu, gmres_amg, automatic };
 
-// When a kept MUMPS factorization is replaced by a new one.
+// When a kept MUMPS factorization is replaced by a new one (cost and clock: the renewal rule, renewal_rule.hpp).
 enum class RefactorRule { lag, cost, clock };
 const std::vector<std::string>& refactor_rule_names();   // in the order of RefactorRule
-
-// The cost rule for refactoring, in any unit of work. A factorization's cycle costs its factorization plus the
-// solves of every tangent it served; keeping it for one more tangent pays while the last tangent's solves cost no
-// more than the cycle's average per tangent so far. Renewing when the marginal cost reaches the average keeps the
-// long-run cost per tangent near its minimum (solves get dearer as the factors age), and it adapts by itself: on
-// a small mesh (a factorization costs ~20 solves) it refactors often, on the fine mesh (~70 solves) rarely.
-class RefactorCost {
-public:
-  void factored(double factorization_cost);   // a new cycle
-  // The next tangent keeps the factors, given the cost of the solves the last tangent took with them.
-  bool keep(double last_tangent_solve_cost);
-  int tangents() const { return tangents_; }     // in this cycle, the factorization's own included
-
-private:
-  double cycle_cost_ = 0.0;
-  int tangents_ = 0;
-};
 
 // The modelled work of refactor = cost, in factorization flops: a factorization costs its operation count
 // (MUMPS' RINFOG(3)); a solve the operations of a forward and a backward substitution through the factors, weighted
@@ -96,6 +79,10 @@ public:
   // gmres-amg: hierarchies built, reused, preconditioner applications, and whether MUMPS has taken over.
   const MultigridStatistics& multigrid_statistics() const;
   const LinearSolverParameters& parameters() const;
+  // The next tangent is factored afresh, whatever the refactor rule says. Call (on every rank) when the constrained
+  // rows change (a master prescribed or freed): factors of the old ones, kept as GMRES' preconditioner, would let
+  // a prescribed unknown move by the linear solve's tolerance at every Newton iteration.
+  void renew_factors() const;
 
 private:
   struct Implementation;

@@ -109,3 +109,50 @@ TEST(EnergyLineSearch, NewtonAtADegenerateMinimumConvergesFasterThanWithFullStep
 }
 
 }  // namespace
+
+namespace {
+
+using spatula::solvers::search_energy_decrease;
+
+// The minimizer's search on the parabola: from alpha = 1 it doubles while the energy keeps falling and keeps the
+// lowest point (2, since phi(4) = phi(2) is no lower), and halves a step that overshoots to the first sufficient one.
+TEST(EnergyDecreaseSearch, ExpandsWhileTheEnergyFallsAndHalvesAnOvershoot)
+{
+  Parabola far{3.0};
+  auto point = search_energy_decrease(std::ref(far), far.origin());
+  EXPECT_DOUBLE_EQ(point.step, 2.0);
+  EXPECT_DOUBLE_EQ(point.energy, 0.5);
+  EXPECT_EQ(far.evaluations, 3);   // 1, 2, 4
+  Parabola near{0.3};   // phi(1) = 0.245 > phi(0) = 0.045; phi(0.5) = 0.02 is sufficient, and short of 1: kept
+  point = search_energy_decrease(std::ref(near), near.origin());
+  EXPECT_DOUBLE_EQ(point.step, 0.5);
+  EXPECT_EQ(near.evaluations, 2);
+}
+
+// Along a direction of negative curvature (phi = -alpha^2 - alpha) the expansion goes on to its longest step, 64;
+// an inadmissible part ends it at the last admissible doubling; with no sufficient decrease anywhere (a rising line
+// whose slope at 0 is said to be negative) the origin comes back, with step 0, after 30 evaluations.
+TEST(EnergyDecreaseSearch, StopsAtTheLongestStepTheAdmissiblePartOrNowhere)
+{
+  int evaluations = 0;
+  const auto concave = [&](double step) {
+    ++evaluations;
+    return LinePoint{step, -2.0 * step - 1.0, -step * step - step, step <= 5.0};
+  };
+  auto point = search_energy_decrease(concave, {0.0, -1.0, 0.0, true});
+  EXPECT_DOUBLE_EQ(point.step, 4.0);   // 8 is inadmissible
+  const auto unbounded = [](double step) { return LinePoint{step, -2.0 * step - 1.0, -step * step - step, true}; };
+  point = search_energy_decrease(unbounded, {0.0, -1.0, 0.0, true});
+  EXPECT_DOUBLE_EQ(point.step, 64.0);
+  evaluations = 0;
+  const auto rising = [&](double step) {
+    ++evaluations;
+    return LinePoint{step, 1.0, step, true};
+  };
+  point = search_energy_decrease(rising, {0.0, -1.0, 0.0, true});
+  EXPECT_EQ(point.step, 0.0);
+  EXPECT_EQ(point.energy, 0.0);
+  EXPECT_EQ(evaluations, 30);
+}
+
+}  // namespace

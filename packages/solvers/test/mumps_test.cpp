@@ -1,6 +1,5 @@
 // The MUMPS wrapper on systems with known answers: a solve against a known solution, the inertia of a shifted
-// Laplacian against its exact eigenvalues, reuse of the analysis, orderings, low-rank factors, the cost rule that
-// decides when a kept factorization is replaced, and the linear solvers as NOX reaches them through Thyra.
+// Laplacian against its exact eigenvalues, reuse of the analysis, orderings, low-rank factors, and the linear solvers as NOX reaches them through Thyra.
 #include "solvers/linear_solver.hpp"
 #include "solvers/mumps_solver.hpp"
 
@@ -156,42 +155,6 @@ TEST(Mumps, LowRankFactorsAreAnApproximateInverse)
   solvers::MumpsSolver exact(matrix->getRowMap(), parameters);
   exact.factor(*matrix);
   EXPECT_LT(relative_residual(*matrix, exact), 1e-13);
-}
-
-TEST(RefactorCost, KeepsTheFactorsWhileTheLastTangentCostsLessThanTheCycleAverage)
-{
-  solvers::RefactorCost cost;
-  EXPECT_FALSE(cost.keep(0.0));   // nothing factored yet
-  cost.factored(10.0);            // a factorization of 10 s, its own tangent's solves took 1 s
-  EXPECT_TRUE(cost.keep(1.0));    // 1 <= (10 + 1) / 1
-  EXPECT_EQ(cost.tangents(), 2);
-  EXPECT_TRUE(cost.keep(3.0));    // 3 <= (11 + 3) / 2 = 7
-  EXPECT_TRUE(cost.keep(4.0));    // 4 <= 18 / 3 = 6
-  EXPECT_FALSE(cost.keep(7.0));   // 7 > 25 / 4: one more tangent would raise the average cost per tangent
-  // The same solve times after a cheap and a dear factorization: the cheap one is renewed sooner.
-  for (double factorization_seconds : {2.0, 10.0}) {
-    cost.factored(factorization_seconds);
-    EXPECT_TRUE(cost.keep(0.5));   // a fresh factorization always serves a second tangent
-    EXPECT_TRUE(cost.keep(2.0));   // 2 <= (F + 2.5) / 2
-    EXPECT_EQ(cost.keep(2.5), factorization_seconds > 2.0);   // 2.5 against (F + 5) / 3: 2.33 or 5
-  }
-}
-
-TEST(RefactorCost, ServesMoreTangentsWhenTheFactorizationIsDearer)
-{
-  // Solves that cost 1 s more with every tangent the factors age: the cycle length grows like the square root of
-  // the factorization's cost F (the average (F + k (k + 1) / 2) / k is least at k = sqrt(2 F)); the rule ends the
-  // cycle one tangent after the optimum, as it sees a tangent's cost only after paying it.
-  const auto cycle = [](double factorization_seconds) {
-    solvers::RefactorCost cost;
-    cost.factored(factorization_seconds);
-    int tangents = 1;
-    while (cost.keep(tangents)) ++tangents;
-    return tangents;
-  };
-  EXPECT_EQ(cycle(2.0), 3);     // optimum 2
-  EXPECT_EQ(cycle(18.0), 7);    // optimum 6
-  EXPECT_EQ(cycle(200.0), 21);  // optimum 20
 }
 
 }  // namespace
