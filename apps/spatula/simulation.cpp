@@ -299,17 +299,30 @@ std::optional<analysis::Failure> Run::follow_stage(const Stage& stage, double ta
   // The rotation counts in radians from theta_s; a force in the half model (the app's forces are the full spatula's).
   const double unit = stage.kind == StageKind::rotate ? degree : stage.force() ? 0.5 : 1.0;
   const double offset = stage.kind == StageKind::rotate ? theta_s_ : 0.0;
+  if (stage.stop_at_force != 0.0) {   // the stop rule: the force along the motion reaches its value
+    const auto force_of = [&stage](const analysis::LoadPoint& p) {
+      return 2.0 * (stage.master() == Master::lift ? p.force : p.slide_force);
+    };
+    const double begun = force_of(path_.last()), threshold = stage.stop_at_force;
+    path_.set_end_test([=](const analysis::LoadPoint& p) { return (force_of(p) - threshold) * (begun - threshold) <= 0.0; });
+  }
   for (double stop : stops) {
     auto failure =
         stage.force()
             ? path_.advance_force(stage.master(), stop * unit, stage.control(), stage.steps, unit, on_point)
             : path_.advance(stage.master(), stop * unit - offset, stage.control(), stage.steps, unit, on_point);
     detached = path_.detached();
-    if (failure || detached) return failure;
+    if (failure || detached || path_.ended()) {
+      path_.set_end_test(nullptr);
+      if (path_.ended() && root_)
+        out_ << "stage '" << stage.name << "' ends at its stop force " << stage.stop_at_force << " nN\n";
+      return failure;
+    }
     if (stage.kind == StageKind::rotate && stage.checkpoints &&
         std::find(loading.checkpoints.begin(), loading.checkpoints.end(), stop) != loading.checkpoints.end())
       write_checkpoint_at(stop);
   }
+  path_.set_end_test(nullptr);
   return std::nullopt;
 }
 

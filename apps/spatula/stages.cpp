@@ -16,13 +16,14 @@ struct KindRules {
   analysis::StepParameters steps;
   bool takes_free_lift, takes_free_slide, takes_checkpoints;
   bool free_lift;        // default
+  bool takes_stop_at_force = false;
 };
 
 const KindRules& rules(StageKind kind)
 {
   static const KindRules rotate{"deg", {1.0, 0.01, 2.0}, true, false, true, true};
-  static const KindRules lift{"nm", {2.0, 0.01, 5.0}, false, true, false, false};
-  static const KindRules slide{"nm", {2.0, 0.01, 5.0}, true, false, false, false};
+  static const KindRules lift{"nm", {2.0, 0.01, 5.0}, false, true, false, false, true};
+  static const KindRules slide{"nm", {2.0, 0.01, 5.0}, true, false, false, false, true};
   static const KindRules lift_force{"nN", {1.0, 0.001, 5.0}, false, true, false, false};
   static const KindRules slide_force{"nN", {1.0, 0.001, 5.0}, true, false, false, false};
   switch (kind) {
@@ -57,6 +58,11 @@ Teuchos::ParameterList valid_stage(StageKind kind)
   if (r.takes_checkpoints)
     parameters::declare_bool(valid, "checkpoints", true,
                              "stop at each of 'Loading/checkpoints at theta_y' on the way and write it");
+  if (r.takes_stop_at_force)
+    parameters::declare_double(valid, "stop at force", 0.0,
+                               "end the stage at the first state whose net force along its motion (P_z for lift, P_x "
+                               "for slide x; full spatula) has reached this value from where the stage began, before "
+                               "the target [nN]; 0: none", parameters::Range::closed(-1e4, 1e4));
   return valid;
 }
 
@@ -89,7 +95,7 @@ void declare_stages(Teuchos::ParameterList& loading)
                               "named as curve.csv's stage column shall name it, each with 'kind' (rotate, lift, slide "
                               "x, lift force, slide x force), 'target' [deg, nm or nN], and optionally 'relative', "
                               "'Steps', 'free lift' (rotate, slide x, slide x force), 'free slide' (lift, lift "
-                              "force), 'checkpoints' (rotate)");
+                              "force), 'checkpoints' (rotate), 'stop at force' (lift, slide x)");
 }
 
 std::vector<Stage> read_stages(const Teuchos::ParameterList& list)
@@ -121,6 +127,7 @@ std::vector<Stage> read_stages(const Teuchos::ParameterList& list)
     if (user.isParameter("free lift")) stage.free_lift = user.get<bool>("free lift");
     if (user.isParameter("free slide")) stage.free_slide = user.get<bool>("free slide");
     if (user.isParameter("checkpoints")) stage.checkpoints = user.get<bool>("checkpoints");
+    if (user.isParameter("stop at force")) stage.stop_at_force = user.get<double>("stop at force");
     if (stage.name.empty() || stage.name.find_first_of(",\n\"") != std::string::npos)
       throw parameters::InputError("stage '" + key + "': a stage's name is a column of curve.csv: not empty, and no "
                                    "comma, quote or line break");

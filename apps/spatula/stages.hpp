@@ -29,6 +29,9 @@ struct Stage {
   bool free_lift = false;      // rotate, slide (x force): zero net Z force on the face (else u_z held)
   bool free_slide = false;     // lift (force): zero net X force on the face (else u_x held)
   bool checkpoints = false;    // rotate: stop at 'Loading/checkpoints at theta_y' on the way and write them
+  // lift, slide: end the stage at the first state whose net force along its motion (P_z, P_x; full spatula) has
+  // reached this value from where the stage began [nN]; 0: none (the stage ends at its target)
+  double stop_at_force = 0.0;
 
   discretization::Master master() const;   // the motion it moves, or the one its force drives
   bool force() const { return kind == StageKind::lift_force || kind == StageKind::slide_force; }

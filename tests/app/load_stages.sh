@@ -3,7 +3,8 @@
 # the coarse pull-off as a rotate and a lift stage give the same curve.csv as the fixed types (every column but the
 # wall time; the stage column keeps the names 'rotation' and 'lift'). A path of three stages (rotate, lift, slide x on
 # the stiction law) names its stages in the curve and ends each at its target; interrupted in its last stage and
-# resumed, it ends where the uninterrupted run ends. Force stages end at their forces, or at the largest one. Bad stage lists, and a restart from a stage the path does not
+# resumed, it ends where the uninterrupted run ends. Force stages end at their forces, or at the largest one; a
+# stage's stop rule ends it at its force. Bad stage lists, and a restart from a stage the path does not
 # have, are refused (exit 2) naming the stage.
 # On two ranks, a run stopped inside its second stage and resumed ends where the one-rank uninterrupted run ends.
 # usage: load_stages.sh <spatula> <source directory> <mpiexec> [mpiexec flags...]
@@ -124,6 +125,27 @@ assert pull[-1] == max(pull) and pull[-1] > 5, pull[-3:]
 print(f"the largest pull: {pull[-1]:.4f} nN after {len(pull)} force steps")
 PY
 passed "force stages end at their forces; beyond the largest, detachment under load control"
+
+# 2c. A stop rule: a lift by up to 50 nm that ends once P_z reaches 2 nN, then a rotation to 22 deg.
+rotation_scene stopped-by-force 20 > stop-base.xml
+as_stages stop-base.xml stopped-by-force "$(stage peel rotate 20)" \
+  "$(stage pull lift 50 '<Parameter name="relative" type="bool" value="true"/><Parameter name="stop at force" type="double" value="2"/>')" \
+  "$(stage turn rotate 22)" > stop-force.xml
+"$app" stop-force.xml > stop-force.log 2>&1 || fail "a stop rule: exit $?"
+grep -q "^stage 'pull' ends at its stop force 2 nN" stop-force.log || fail "a stop rule: not named in the log"
+python3 - stopped-by-force/curve.csv <<'PY' || fail "a stop rule: the pull did not end where P_z reached 2 nN"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+pull = [r for r in rows if r['stage'] == 'pull']
+turn = [r for r in rows if r['stage'] == 'turn']
+start = rows[rows.index(pull[0]) - 1]
+assert float(pull[-1]['P_z_nN']) >= 2 and all(float(r['P_z_nN']) < 2 for r in pull[:-1]), [r['P_z_nN'] for r in pull]
+assert float(pull[-1]['u_z_nm']) < float(start['u_z_nm']) + 50
+assert turn and abs(float(turn[-1]['theta_y_deg']) - 22) < 1e-9
+print(f"stop rule: the pull ended at P_z {float(pull[-1]['P_z_nN']):.3f} nN after "
+      f"{float(pull[-1]['u_z_nm']) - float(start['u_z_nm']):.3f} nm; the next stage ran to 22 deg")
+PY
+passed "a stage's stop rule ends it at its force, and the path goes on"
 
 # 3. Stopped inside the last stage and resumed: the uninterrupted run's end.
 three_stages stopped | sed 's#<Parameter name="directory"#<Parameter name="checkpoint interval" type="double" value="0.0001"/>&#' > stopped.xml

@@ -131,7 +131,7 @@ std::optional<Failure> LoadPath::jump(Master controlled, double value, const Cal
       *log_ << "  jumped in " << iterations << " iterations (energy descent, then Newton), released "
             << load_text(2.0 * released) << " nN nm (full spatula)\n";
   }
-  if (detachment_test_ && detachment_test_(after)) detached_ = true;
+  check_end(after);
   if (on_point) on_point(after, *x_);
   return std::nullopt;
 }

@@ -83,6 +83,7 @@ std::optional<Failure> LoadPath::follow(Stepping& stepping, double target, const
   const double unit = stepping.unit, direction = stepping.direction;
   const auto& control = stepping.control;
   previous_increment_ = older_increment_ = 0.0;   // no predictor across a change of the controlled load
+  ended_ = false;
   if (resumed_control_) {   // a resumed run goes on where the stopped one was
     if (resumed_control_->increment > 0.0) stepping.increment = resumed_control_->increment;
     stepping.failed.restore(*resumed_control_);
@@ -105,7 +106,7 @@ std::optional<Failure> LoadPath::follow(Stepping& stepping, double target, const
     }
   }
   auto trial = system.create_vector();
-  while (!detached_ && direction * (target - stepping.value) > 1e-12 * std::max(1.0, std::abs(target))) {
+  while (!detached_ && !ended_ && direction * (target - stepping.value) > 1e-12 * std::max(1.0, std::abs(target))) {
     stepping.increment =
         stepping.failed.limit(std::min(stepping.increment, direction * (target - stepping.value)), stepping.value);
     const double load = stepping.value + direction * stepping.increment;
@@ -249,6 +250,12 @@ void LoadPath::predict(Vector& trial, double increment, StepParameters::Predicto
   trial.update(w.current, *x_, 1.0);
 }
 
+void LoadPath::check_end(const LoadPoint& point)
+{
+  if (detachment_test_ && detachment_test_(point)) detached_ = true;
+  if (end_test_ && end_test_(point)) ended_ = true;
+}
+
 void LoadPath::set_control(const discretization::MasterControl& control) const
 {
   auto& system = model_.system();
@@ -293,7 +300,7 @@ std::variant<double, Failure> LoadPath::continue_past(const Fold& fold, const Ar
           << " not reachable on this branch: arc-length continuation round the fold\n";
   auto failure = arc_length(fold.controlled, fold.unreached, fold.control, parameters, fold.unit,
                             [&](const LoadPoint& p, const Vector& x) {
-                              if (detachment_test_ && detachment_test_(p)) detached_ = true;
+                              check_end(p);
                               if (on_point) on_point(p, x);
                             });
   set_control(fold.control);
@@ -311,7 +318,7 @@ void LoadPath::take_step(const Vector& state, const LoadPoint& point, double inc
   previous_increment_ = increment;
   history_.append(point);
   if (log_ && tables_) *log_ << table;
-  if (detachment_test_ && detachment_test_(last())) detached_ = true;
+  check_end(last());
   if (on_point) on_point(last(), *x_);
 }
 

@@ -143,6 +143,10 @@ public:
   // The detachment test that ends a path cleanly.
   void set_detachment_test(std::function<bool(const LoadPoint&)> test) { detachment_test_ = std::move(test); }
   bool detached() const { return detached_; }
+  // A test that ends an advance early at a converged point, without failure (a stage's stop rule: a force reached);
+  // each advance starts with it unmet. null: none.
+  void set_end_test(std::function<bool(const LoadPoint&)> test) { end_test_ = std::move(test); }
+  bool ended() const { return ended_; }
   // Early descents (JumpParameters::descend_after_failures) tried, and taken as ordinary steps.
   struct EarlyDescents {
     int tried = 0, taken = 0;
@@ -210,8 +214,9 @@ private:
   bool jumps() const;   // the policy jumps at fixed load (early descents, a checkpointed jump)
   JumpParameters jump_;
   solvers::EnergyMinimizer minimizer_;   // of the jumps, early descents and equilibrate()
-  std::function<bool(const LoadPoint&)> detachment_test_;
-  bool detached_ = false;
+  std::function<bool(const LoadPoint&)> detachment_test_, end_test_;
+  bool detached_ = false, ended_ = false;
+  void check_end(const LoadPoint& point);   // the detachment and end tests at a converged point
   std::optional<JumpInProgress> jump_in_progress_, resumed_jump_;
   std::function<void()> descent_watch_;
   // The jump's descent from a checkpoint of it, if resumed_jump_ is in this master (the first thing an advance does).

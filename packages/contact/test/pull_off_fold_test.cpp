@@ -299,3 +299,35 @@ TEST(PullOffFold, UnderADeadLoadTheBarFollowsItsAnalyticBranchUpToTheLargestForc
   EXPECT_GT(bar_path.path->last().force, largest - 5.0 * bar_path.steps.minimum);
   EXPECT_GT(failure->load, bar_path.path->last().force);
 }
+
+// A path of two lift stages (to 1 nm, below the fold, then past it) is the single lift's path: the same states where
+// both sample the same loads, the same far state after the same snap. (The second stage starts its increments
+// afresh, so the loads it samples differ; the fold, the jump's release and the end may not.)
+TEST(PullOffFold, TwoLiftStagesFollowTheSinglePath)
+{
+  BarPath single(analysis::JumpParameters{}), staged(analysis::JumpParameters{});
+  const double target = 4.0;   // past the fold at about 2.6 nm
+  ASSERT_FALSE(single.lift_to(target).has_value());
+  ASSERT_FALSE(staged.lift_to(1.0).has_value());
+  ASSERT_FALSE(staged.lift_to(target).has_value());
+  const auto &a = single.path->points(), &b = staged.path->points();
+  const auto jump_of = [](const std::vector<analysis::LoadPoint>& points) {
+    return *std::find_if(points.begin(), points.end(), [](const analysis::LoadPoint& p) { return p.after_jump; });
+  };
+  const auto ja = jump_of(a), jb = jump_of(b);
+  EXPECT_NEAR(jb.released, ja.released, 1e-3 * ja.released);
+  EXPECT_NEAR(jb.lift, ja.lift, 2.0 * single.steps.minimum);
+  EXPECT_NEAR(b.back().lift, a.back().lift, 1e-12);
+  EXPECT_NEAR(b.back().force, a.back().force, 1e-6 * std::abs(a.back().force));
+  EXPECT_NEAR(b.back().external_work, a.back().external_work, 1e-3 * std::abs(a.back().external_work));
+  int shared = 0;
+  for (const auto& p : b) {   // where both sampled the same load, the same state
+    for (const auto& q : a) {
+      if (std::abs(p.lift - q.lift) < 1e-12 && !p.after_jump && !q.after_jump) {
+        ++shared;
+        EXPECT_NEAR(p.force, q.force, 1e-6 * std::max(1.0, std::abs(q.force))) << "at the lift " << p.lift;
+      }
+    }
+  }
+  EXPECT_GE(shared, 3);
+}
