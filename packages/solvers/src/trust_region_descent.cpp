@@ -6,7 +6,7 @@
 // of a positive definite shifted tangent K' + eta I from an earlier state; along a direction of negative curvature
 // the step goes to the region's boundary, so a snap is followed without shifting the tangent at every iteration.
 // The step is taken where Pi falls by at least a small share of what the model predicts; the radius shrinks after a
-// poor prediction and grows fourfold after a good one that reached the boundary. The factors are renewed only when the
+// poor prediction and doubles after a good one that reached the boundary. The factors are renewed only when the
 // conjugate gradients stop converging within their limit (their preconditioner no longer fits the tangent).
 //
 // The assembled matrix is K + eta I (the proximal shift of the factors, anchored at x: f is unchanged), so products
@@ -136,10 +136,11 @@ std::optional<std::string> EnergyMinimizer::descend_by_trust_region(Vector& x, D
               << std::setw(7) << (fresh ? 0 : -1) << "  " << std::setw(9) << point.residual
               << "  " << std::setw(9) << ratio << "  " << std::setprecision(8) << point.energy << std::setprecision(2)
               << "  cg " << iterations << (boundary ? " boundary" : "") << "  radius " << d.radius << "\n";
-    // A poor prediction shrinks the region (to half the step that missed, a quarter of a boundary one); a good one
-    // at the boundary widens it fourfold: a snap carries the state far, and the region grows to it in few steps.
-    if (ratio < 0.25) d.radius = boundary ? 0.25 * d.radius : 0.5 * std::min(d.radius, length);
-    else if (ratio > 0.75 && boundary) d.radius *= 4.0;
+    // A poor prediction shrinks the region to a quarter (of the step that missed, if shorter); a good one at the
+    // boundary doubles it. (Widening it fourfold, or extending a good boundary step along its direction while Pi
+    // falls, took as many iterations or more on the medium pull-off's snap: the next boundary step then missed.)
+    if (ratio < 0.25) d.radius = 0.25 * (boundary ? d.radius : std::min(d.radius, length));
+    else if (ratio > 0.75 && boundary) d.radius *= 2.0;
     if (ratio > accepted_share) {
       x.assign(*trial);
       ++d.accepted;
