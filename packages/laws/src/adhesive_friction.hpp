@@ -1,0 +1,121 @@
+#pragma once
+// Adhesive friction at one contact point: the tangential traction of a sliding law that acts in tension as well as
+// in compression (Mergel, Sahli, Scheibert and Sauer, J. Adhesion 2019), as a pure function of the gap, the point's
+// tangential position and its history (deal.II's quadrature-point history: the state comes in, the trial state goes
+// out, and the caller commits it only at a converged state).
+//
+// Elastic stick, then slip on a sliding limit tau(g) (a return mapping, exact for this one-surface model):
+//   trial traction  t* = eps_T (s - a),    s: the point's tangential position, a: its sliding anchor (the history),
+//   stick (|t*| <= tau(g)):  t = t*,                          a unchanged,
+//   slip  (|t*| >  tau(g)):  t = tau(g) n,  n = t* / |t*|,     a = s - t / eps_T,
+// and the energy dissipated in the slip, tau(g) |a_new - a_old| (the elastic part eps_T |s - a|^2 / 2 is stored).
+// The sliding limits (`Limit`):
+//   extended Amontons:   tau = mu (T_n(g) + t_max) C(g), T_n = -phi'(g) the Lennard-Jones normal traction (positive in
+//                        compression), t_max its strongest attraction: zero where the attraction is strongest, growing
+//                        with compression, positive in tension;
+//   constant strength:   tau = tau_0 C(g);
+// both switched off beyond the cut-off gap g_c by C = 1 up to g_c, the quintic smootherstep down to 0 at 1.25 g_c
+// (C1 and C2 continuous: a hard cut would make the residual jump).
+// The consistent tangent: d t / d s (2 x 2) and d t / d g (2: the normal-tangential coupling, zero in stick); the
+// normal traction does not depend on s, so the point's tangent is not symmetric in slip.
+#include "laws/lennard_jones.hpp"
+
+#include <Kokkos_Core.hpp>
+
+#include <cmath>
+
+namespace spatula::laws {
+
+struct FrictionHistory {
+  double anchor[2] = {0.0, 0.0};   // where the tangential spring is relaxed [nm]
+  double dissipated = 0.0;         // energy dissipated by sliding so far, per unit area [nN/nm]
+};
+
+struct FrictionResponse {
+  double traction[2] = {0.0, 0.0};   // t, on the point along the substrate [nN/nm^2]
+  double d_position[2][2] = {{0.0, 0.0}, {0.0, 0.0}};   // d t_i / d s_j
+  double d_gap[2] = {0.0, 0.0};                          // d t_i / d g
+  bool sliding = false;
+  double limit = 0.0;                // tau(g)
+  FrictionHistory trial;             // the history after this state (commit it at a converged state)
+};
+
+struct AdhesiveFriction {
+  enum class Limit { extended_amontons, constant_strength };
+  LennardJones law;            // the normal law whose traction the extended Amontons limit follows
+  Limit limit = Limit::extended_amontons;
+  double coefficient = 0.3;    // mu (extended Amontons)
+  double strength = 0.0;       // tau_0 [nN/nm^2] (constant strength)
+  double stiffness = 10.0;     // eps_T [nN/nm^3], the elastic stick's tangential stiffness per unit area
+  double cutoff = 1.0;         // g_c [nm]
+
+  // C(g) and C'(g): 1 up to g_c, smootherstep to 0 at 1.25 g_c.
+  KOKKOS_INLINE_FUNCTION void switch_off(double g, double& c, double& dc) const
+  {
+    const double width = 0.25 * cutoff;
+    if (g <= cutoff) {
+      c = 1.0;
+      dc = 0.0;
+      return;
+    }
+    if (g >= cutoff + width) {
+      c = dc = 0.0;
+      return;
+    }
+    const double t = (g - cutoff) / width;
+    c = 1.0 - t * t * t * (10.0 - 15.0 * t + 6.0 * t * t);
+    dc = -30.0 * t * t * (1.0 - t) * (1.0 - t) / width;
+  }
+
+  // tau(g) and tau'(g).
+  KOKKOS_INLINE_FUNCTION void sliding_limit(double g, double& tau, double& dtau) const
+  {
+    double c, dc;
+    switch_off(g, c, dc);
+    if (limit == Limit::constant_strength) {
+      tau = strength * c;
+      dtau = strength * dc;
+      return;
+    }
+    double phi, dphi, d2phi;
+    law.evaluate(g, phi, dphi, d2phi);
+    const double lifted = -dphi + law.max_traction();   // T_n + t_max >= 0
+    const double positive = lifted > 0.0 ? lifted : 0.0;
+    tau = coefficient * positive * c;
+    dtau = coefficient * ((lifted > 0.0 ? -d2phi : 0.0) * c + positive * dc);
+  }
+
+  // The response at gap g and tangential position s from the history `in`.
+  KOKKOS_INLINE_FUNCTION FrictionResponse evaluate(double g, const double s[2], const FrictionHistory& in) const
+  {
+    FrictionResponse out;
+    out.trial = in;
+    double tau, dtau;
+    sliding_limit(g, tau, dtau);
+    out.limit = tau;
+    const double trial[2] = {stiffness * (s[0] - in.anchor[0]), stiffness * (s[1] - in.anchor[1])};
+    const double size = ::sqrt(trial[0] * trial[0] + trial[1] * trial[1]);
+    if (size <= tau) {   // stick
+      for (int i = 0; i < 2; ++i) {
+        out.traction[i] = trial[i];
+        out.d_position[i][i] = stiffness;
+      }
+      return out;
+    }
+    out.sliding = true;   // slip: back to the limit along the trial direction
+    const double n[2] = {trial[0] / size, trial[1] / size};
+    double slipped = 0.0;
+    for (int i = 0; i < 2; ++i) {
+      out.traction[i] = tau * n[i];
+      out.d_gap[i] = dtau * n[i];
+      for (int j = 0; j < 2; ++j) out.d_position[i][j] = tau / size * stiffness * ((i == j ? 1.0 : 0.0) - n[i] * n[j]);
+      out.trial.anchor[i] = s[i] - out.traction[i] / stiffness;
+      const double step = out.trial.anchor[i] - in.anchor[i];
+      slipped += step * step;
+    }
+    out.trial.dissipated = in.dissipated + tau * ::sqrt(slipped);
+    return out;
+  }
+};
+
+}  // namespace spatula::laws
