@@ -1,0 +1,32 @@
+"""How a study's run stands in its work directory: complete, started (complete or stopped with a curve), and how a
+pull-off ended."""
+import os
+
+from curves import pull_off_summary
+from scenes import app_diagnosis
+
+
+def complete(work, scene):
+    return os.path.exists(os.path.join(work, scene, 'curve.csv'))
+
+
+def outcome(work, scene):
+    """How a pull-off ended: detached, or stopped with the app's diagnosis (Delta u_z and Delta Pi_ext are then
+    taken to the last converged state, just before the snap the jump could not follow)."""
+    log = os.path.join(work, scene + '.log')
+    if complete(work, scene):
+        summary = pull_off_summary(work, scene)
+        if 'detached' not in summary:   # the run ended during its rotation: the app detected detachment there
+            lines = [l for l in open(log).read().splitlines() if l.startswith('detachment:')] if os.path.exists(log) else []
+            return 'detached during the rotation, before the lift' + (f' ({lines[-1]})' if lines else '')
+        return 'detached' if summary['detached'] else 'final lift reached'
+
+    diagnosis = app_diagnosis(open(log).read()) if os.path.exists(log) else None
+    if diagnosis:
+        return 'stopped: ' + diagnosis + ' (values up to the last converged state)'
+    return 'did not finish (values up to the last converged state)'
+
+
+def started(work, scene):
+    """Complete, or stopped with the curve up to its last converged state in <scene>.incomplete/."""
+    return complete(work, scene) or os.path.exists(os.path.join(work, scene + '.incomplete', 'curve.csv'))
