@@ -39,19 +39,21 @@ CurveWriter::CurveWriter(const std::string& file, double young, double reference
 
 double CurveWriter::balance_error(const analysis::LoadPoint& p) const
 {
-  return std::abs(2 * p.external_work - internal(p) - stored_adhesion(p) - 2 * p.dissipated) / reference_;
+  const auto full = full_spatula(p);
+  return std::abs(full.external_work - internal(p) - stored_adhesion(p) - full.dissipated) / reference_;
 }
 
 void CurveWriter::write(const analysis::LoadPoint& p, const std::string& stage, double theta_s)
 {
   const double sa = stored_adhesion(p);
+  const auto full = full_spatula(p);
   out_ << p.step << "," << stage << "," << (theta_s + p.rotation) / degree << "," << p.lift << ","
-       << 2 * p.moment << "," << 2 * p.moment / young_ << "," << 2 * p.force << "," << 2 * p.force / young_ << ","
-       << internal(p) << "," << 2 * p.external_work << "," << 2 * p.contact_energy << "," << sa << ","
-       << 2 * p.external_work / reference_ << "," << internal(p) / reference_ << "," << sa / reference_
-       << "," << 2 * p.dissipated / reference_ << "," << balance_error(p) << "," << (p.after_jump ? 1 : 0) << ","
+       << full.moment << "," << full.moment / young_ << "," << full.force << "," << full.force / young_ << ","
+       << internal(p) << "," << full.external_work << "," << full.contact_energy << "," << sa << ","
+       << full.external_work / reference_ << "," << internal(p) / reference_ << "," << sa / reference_
+       << "," << full.dissipated / reference_ << "," << balance_error(p) << "," << (p.after_jump ? 1 : 0) << ","
        << p.active_faces << "," << p.skipped_faces << ","
-       << p.newton_iterations << "," << p.negative_pivots << "," << p.seconds << "," << p.slide << "," << 2 * p.slide_force << "\n";
+       << p.newton_iterations << "," << p.negative_pivots << "," << p.seconds << "," << p.slide << "," << full.slide_force << "\n";
   commit_row();
 }
 

@@ -3,6 +3,7 @@
 // Energies in the paper's form: Pi_sa = Pi_c - Pi_c(start) (= Pi_c0 + Pi_c for the exact law), all over
 // Pi_c0 = A_c w_adh; the balance error |Pi_ext - Pi_int - Pi_sa| / Pi_c0 (Pi_c0 = 1 without adhesion).
 #include "analysis/load_stepping.hpp"
+#include "full_spatula.hpp"
 
 #include <fstream>
 #include <string>
@@ -16,8 +17,8 @@ public:
   // `resume_after`: go on with the curve of a stopped run, keeping its rows up to that step (-1: a new curve).
   CurveWriter(const std::string& file, double young, double reference_energy, double initial_internal_energy,
               double initial_contact_energy, int resume_after = -1);
-  double stored_adhesion(const analysis::LoadPoint& p) const { return 2 * (p.contact_energy - initial_contact_); }
-  double internal(const analysis::LoadPoint& p) const { return 2 * (p.internal_energy - initial_internal_); }
+  double stored_adhesion(const analysis::LoadPoint& p) const { return full_spatula(p.contact_energy - initial_contact_); }
+  double internal(const analysis::LoadPoint& p) const { return full_spatula(p.internal_energy - initial_internal_); }
   // |Pi_ext - Pi_int - Pi_sa - D| / Pi_c0 with D the energy the jumps past instabilities released (dissipated).
   double balance_error(const analysis::LoadPoint& p) const;
   // One row; `stage` is the stage's name, `theta_s` the shaft's inclination in the undeformed state [rad].

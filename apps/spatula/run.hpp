@@ -54,11 +54,11 @@ private:
   double load_of(const analysis::LoadPoint& p, const Stage& stage) const
   {
     if (!stage.force()) return motion_of(p, stage.master());
-    return 2.0 * (stage.master() == Master::lift ? p.force : p.slide_force);
+    return full_spatula(stage.master() == Master::lift ? p.force : p.slide_force);
   }
   double released_fraction(const analysis::LoadPoint& p) const
   {
-    return 2.0 * (p.contact_energy - initial_contact_) / reference_energy_;
+    return full_spatula(p.contact_energy - initial_contact_) / reference_energy_;
   }
   bool detached(const analysis::LoadPoint& p);
   std::string checkpoint_file() const { return directory_ ? directory_->file("checkpoints.h5") : ""; }

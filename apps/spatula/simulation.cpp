@@ -57,14 +57,15 @@ Run::Run(const Scene& scene, const geometry::SpatulaShape& shape, const mesh::He
 {
   path_.set_instability_policy(instability_policy(scene.loading));
   const auto& contact = options_.contact;
-  if (contact) reference_energy_ = 2.0 * system_->contact_area() * contact->work_of_adhesion();
+  if (contact) reference_energy_ = full_spatula(system_->contact_area()) * contact->work_of_adhesion();
   if (root_ && contact)
     out << "adhesion: " << contact->description() << "\n"
-        << "  contact area A_c = " << 2.0 * system_->contact_area() << " nm^2, Pi_c0 = A_c w_adh = "
+        << "  contact area A_c = " << full_spatula(system_->contact_area()) << " nm^2, Pi_c0 = A_c w_adh = "
         << reference_energy_ << " nN nm = " << reference_energy_ / young_ << " E R0^3\n";
   auto jump = scene.loading.jump;   // the step balance check in the half model's energy (adhesion only)
-  jump.step_balance_tolerance = contact ? scene.loading.step_balance_tolerance * reference_energy_ / 2.0 : 0.0;
+  jump.step_balance_tolerance = contact ? scene.loading.step_balance_tolerance * reference_energy_ / halves : 0.0;
   path_.set_jump_parameters(jump);
+  path_.set_energy_report(halves, "full spatula");
   if (contact) path_.set_detachment_test([this](const analysis::LoadPoint& p) { return detached(p); });
   path_.set_descent_watch([this] { on_descent(); });
 }
@@ -297,11 +298,11 @@ std::optional<analysis::Failure> Run::follow_stage(const Stage& stage, double ta
   }
   stops.push_back(target);
   // The rotation counts in radians from theta_s; a force in the half model (the app's forces are the full spatula's).
-  const double unit = stage.kind == StageKind::rotate ? degree : stage.force() ? 0.5 : 1.0;
+  const double unit = stage.kind == StageKind::rotate ? degree : stage.force() ? 1.0 / halves : 1.0;
   const double offset = stage.kind == StageKind::rotate ? theta_s_ : 0.0;
   if (stage.stop_at_force != 0.0) {   // the stop rule: the force along the motion reaches its value
     const auto force_of = [&stage](const analysis::LoadPoint& p) {
-      return 2.0 * (stage.master() == Master::lift ? p.force : p.slide_force);
+      return full_spatula(stage.master() == Master::lift ? p.force : p.slide_force);
     };
     const double begun = force_of(path_.last()), threshold = stage.stop_at_force;
     path_.set_end_test([=](const analysis::LoadPoint& p) { return (force_of(p) - threshold) * (begun - threshold) <= 0.0; });

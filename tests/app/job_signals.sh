@@ -57,7 +57,7 @@ passed "ulimit -t 2: exit $status, $(grep -o "interrupted by SIGXCPU.*" cpu.log 
 
 # 3. The watchdog: with a grace shorter than any step, no converged state comes in time.
 rotation_scene watched 20 "" "" '<Parameter name="checkpoint interval" type="double" value="0.0001"/>' |
-  sed '$ s#^</ParameterList>#  <ParameterList name="Job"><Parameter name="stop grace" type="double" value="0.001"/></ParameterList>\n&#' > watched.xml
+  sed '$ s#^</ParameterList>#  <ParameterList name="Job"><Parameter name="stop grace" type="double" value="0.000001"/></ParameterList>\n&#' > watched.xml
 "$app" watched.xml > watched.log 2>&1 &
 pid=$!
 wait_for_step watched.log 3 || fail "watchdog: the run did not start"

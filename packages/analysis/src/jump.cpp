@@ -59,13 +59,13 @@ std::optional<LoadPoint> LoadPath::descend_early(Master controlled, double load,
   auto point = measure(state, outcome.iterations, -1);
   const double released = history_.released_energy(point);
   if (std::abs(released) > jump_.step_balance_tolerance) {
-    if (log_) *log_ << "  the descent released " << load_text(2.0 * released) << " nN nm (full spatula), more than "
+    if (log_) *log_ << "  the descent released " << released_text(released) << " (" << report_of_ << "), more than "
                     << "the step balance tolerance: a snap proper\n";
     return std::nullopt;
   }
   ++early_descents_.taken;
   if (log_) *log_ << "  the descent reached a state on this branch in " << outcome.iterations
-                  << " iterations (released " << load_text(2.0 * released) << " nN nm, full spatula): an ordinary step\n";
+                  << " iterations (released " << released_text(released) << ", " << report_of_ << "): an ordinary step\n";
   return point;
 }
 
@@ -124,12 +124,12 @@ std::optional<Failure> LoadPath::jump(Master controlled, double value, const Cal
     // ordinary step, not a snap.
     if (log_)
       *log_ << "  the descent stayed on the branch in " << iterations << " iterations (released "
-            << load_text(2.0 * released) << " nN nm, full spatula, within the step balance tolerance): an ordinary step\n";
+            << released_text(released) << ", " << report_of_ << ", within the step balance tolerance): an ordinary step\n";
   } else {
     history_.mark_last_as_jump(released);
     if (log_)
       *log_ << "  jumped in " << iterations << " iterations (energy descent, then Newton), released "
-            << load_text(2.0 * released) << " nN nm (full spatula)\n";
+            << released_text(released) << " (" << report_of_ << ")\n";
   }
   check_end(after);
   if (on_point) on_point(after, *x_);

@@ -196,8 +196,8 @@ std::variant<bool, Failure> LoadPath::crossed_snap(Stepping& stepping, double lo
   if (stepping.increment * stepping.steps.cut >= stepping.smallest) {
     if (log_)
       *log_ << table << "  step to " << stepping.name << " = " << load_text(load / stepping.unit)
-            << " converged on another branch (the step released " << load_text(2.0 * released)
-            << " nN nm, full spatula): a snap within the step; cutting the increment\n";
+            << " converged on another branch (the step released " << released_text(released)
+            << ", " << report_of_ << "): a snap within the step; cutting the increment\n";
     stepping.failed.failed(load);
     stepping.increment *= stepping.steps.cut;
     if (!stepping.steps.predict_after_failure) previous_increment_ = older_increment_ = 0.0;
@@ -208,14 +208,14 @@ std::variant<bool, Failure> LoadPath::crossed_snap(Stepping& stepping, double lo
     failure.step = next_step();
     failure.load = load / stepping.unit;
     failure.smallest_increment = stepping.increment / stepping.unit;
-    failure.reason = "a snap within the smallest step (it released " + load_text(2.0 * released) +
-                     " nN nm, full spatula) and instabilities are set to stop";
+    failure.reason = "a snap within the smallest step (it released " + released_text(released) + ", " +
+                     report_of_ + ") and instabilities are set to stop";
     return failure;
   }
   mark_jump(point, released);   // the smallest step still crosses the snap: it is the jump
   if (log_)
     *log_ << "  snap within the smallest step to " << stepping.name << " = " << load_text(load / stepping.unit)
-          << ": counted as a jump, released " << load_text(2.0 * released) << " nN nm (full spatula)\n";
+          << ": counted as a jump, released " << released_text(released) << " (" << report_of_ << ")\n";
   return false;
 }
 

@@ -5,6 +5,7 @@
 // Each converged step is a LoadPoint; the run stops at the target, or with a Failure naming the step, the load,
 // the smallest increment tried and the Newton diagnosis (never a silently accepted state).
 #include "analysis/load_history.hpp"
+#include "analysis/load_path_log.hpp"
 #include "analysis/step_control.hpp"
 #include "solvers/energy_minimizer.hpp"
 #include "solvers/newton.hpp"
@@ -142,6 +143,13 @@ public:
   void resume_jump(JumpInProgress jump) { resumed_jump_ = std::move(jump); }
   // The detachment test that ends a path cleanly.
   void set_detachment_test(std::function<bool(const LoadPoint&)> test) { detachment_test_ = std::move(test); }
+  // How the log reports an energy released: the model's value times `factor`, named `of_what` (a symmetric half
+  // model reports the whole body's: 2, "full spatula"). Default: the model's own, "the model".
+  void set_energy_report(double factor, std::string of_what)
+  {
+    report_factor_ = factor;
+    report_of_ = std::move(of_what);
+  }
   bool detached() const { return detached_; }
   // A test that ends an advance early at a converged point, without failure (a stage's stop rule: a force reached);
   // each advance starts with it unmet. null: none.
@@ -224,6 +232,9 @@ private:
   std::optional<Failure> jump(Master controlled, double value, const Callback& on_point,
                               const JumpInProgress* resumed);
   EarlyDescents early_descents_;
+  double report_factor_ = 1.0;
+  std::string report_of_ = "the model";
+  std::string released_text(double released) const { return load_text(report_factor_ * released) + " nN nm"; }
 };
 
 }  // namespace spatula::analysis
