@@ -54,7 +54,7 @@ private:
   double load_of(const analysis::LoadPoint& p, const Stage& stage) const
   {
     if (!stage.force()) return motion_of(p, stage.master());
-    return full_spatula(stage.master() == Master::lift ? p.force : p.slide_force);
+    return full_spatula(p.reaction(stage.master()));
   }
   double released_fraction(const analysis::LoadPoint& p) const
   {

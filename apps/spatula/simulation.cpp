@@ -302,7 +302,7 @@ std::optional<analysis::Failure> Run::follow_stage(const Stage& stage, double ta
   const double offset = stage.kind == StageKind::rotate ? theta_s_ : 0.0;
   if (stage.stop_at_force != 0.0) {   // the stop rule: the force along the motion reaches its value
     const auto force_of = [&stage](const analysis::LoadPoint& p) {
-      return full_spatula(stage.master() == Master::lift ? p.force : p.slide_force);
+      return full_spatula(p.reaction(stage.master()));
     };
     const double begun = force_of(path_.last()), threshold = stage.stop_at_force;
     path_.set_end_test([=](const analysis::LoadPoint& p) { return (force_of(p) - threshold) * (begun - threshold) <= 0.0; });

@@ -29,6 +29,13 @@ struct LoadPoint {
   double released = 0.0;     // energy released in that jump (Pi_int + Pi_c before minus after, at fixed load) [nN nm]
   double dissipated = 0.0;   // energy released in all jumps so far [nN nm]
   StepControllerState step_control;   // the controller's state after this point (a resumed run's start)
+
+  // The reaction conjugate to a master: the moment, the force along the lift or along the slide.
+  double reaction(discretization::Master master) const
+  {
+    return master == discretization::Master::rotation ? moment : master == discretization::Master::lift ? force
+                                                                                                        : slide_force;
+  }
 };
 
 // The first state on the far side of an instability that released `released` [nN nm, half model].

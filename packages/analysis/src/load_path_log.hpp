@@ -1,16 +1,14 @@
 #pragma once
-// What the load path's files share: a monotonic clock for the log's seconds and the descent's cost rule, and the
-// format of a load value in the log.
-#include <chrono>
+// What the load path's files share: the monotonic clock (solvers/wall_clock.hpp) and the format of a load value in
+// the log.
+#include "solvers/wall_clock.hpp"
+
 #include <cstdio>
 #include <string>
 
 namespace spatula::analysis {
 
-inline double now()
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+using solvers::now;
 
 // A load value for the log, independent of the stream's current format.
 inline std::string load_text(double value)

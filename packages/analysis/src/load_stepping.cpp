@@ -51,37 +51,29 @@ std::optional<Failure> LoadPath::advance(Master controlled, double target, discr
 {
   control.prescribed[static_cast<int>(controlled)] = true;
   set_control(control);
-  const double value = model_.system().master(*x_, controlled);
-  const double direction = target >= value ? 1.0 : -1.0;
-  Stepping stepping{controlled, false, load_name(controlled, false), control, steps, unit, direction,
-                    steps.minimum * unit * (1 - 1e-12), value, steps.initial * unit,
-                    FailedLoad(direction, steps.minimum * unit, steps.cut)};
-  return follow(stepping, target, on_point);
+  return follow(controlled, false, model_.system().master(*x_, controlled), target, control, steps, unit, on_point);
 }
 
 std::optional<Failure> LoadPath::advance_force(Master loaded, double target, discretization::MasterControl control,
                                                const StepParameters& steps, double unit, const Callback& on_point)
 {
   const int m = static_cast<int>(loaded);
-  const auto& now = last();
-  const double value = loaded == Master::rotation ? now.moment : loaded == Master::lift ? now.force : now.slide_force;
+  const double value = last().reaction(loaded);
   control.prescribed[m] = false;
   control.applied[m] = value;   // the load the face carries: no jump as the stage begins
   set_control(control);
-  const double direction = target >= value ? 1.0 : -1.0;
-  Stepping stepping{loaded, true, load_name(loaded, true), control, steps, unit, direction,
-                    steps.minimum * unit * (1 - 1e-12), value, steps.initial * unit,
-                    FailedLoad(direction, steps.minimum * unit, steps.cut)};
-  return follow(stepping, target, on_point);
+  return follow(loaded, true, value, target, control, steps, unit, on_point);
 }
 
-std::optional<Failure> LoadPath::follow(Stepping& stepping, double target, const Callback& on_point)
+std::optional<Failure> LoadPath::follow(Master controlled, bool force, double value, double target,
+                                        const discretization::MasterControl& control, const StepParameters& steps,
+                                        double unit, const Callback& on_point)
 {
+  const double direction = target >= value ? 1.0 : -1.0;
+  Stepping stepping{controlled, force, load_name(controlled, force), control, steps, unit, direction,
+                    steps.minimum * unit * (1 - 1e-12), value, steps.initial * unit,
+                    FailedLoad(direction, steps.minimum * unit, steps.cut)};
   auto& system = model_.system();
-  const Master controlled = stepping.controlled;
-  const auto& steps = stepping.steps;
-  const double unit = stepping.unit, direction = stepping.direction;
-  const auto& control = stepping.control;
   previous_increment_ = older_increment_ = 0.0;   // no predictor across a change of the controlled load
   ended_ = false;
   if (resumed_control_) {   // a resumed run goes on where the stopped one was

@@ -195,7 +195,10 @@ private:
   // converged one that crossed a snap (true: cut back and try again; at the smallest increment it is the jump), and a
   // converged step taken (the increment grows after an easy one).
   struct Stepping;
-  std::optional<Failure> follow(Stepping& stepping, double target, const Callback& on_point);
+  // The steps of an advance from `value` of the load (the master's value, or with `force` its dead load) to `target`.
+  std::optional<Failure> follow(Master controlled, bool force, double value, double target,
+                                const discretization::MasterControl& control, const StepParameters& steps, double unit,
+                                const Callback& on_point);
   void set_load(Stepping& stepping, Vector& trial, double load) const;   // the master's value or its dead load
   // Sets which masters are prescribed (and the dead loads); where that changes, the kept factors are renewed.
   void set_control(const discretization::MasterControl& control) const;

@@ -4,19 +4,15 @@
 // and the iterations' table. Private to the minimizer's files.
 #include "solvers/energy_minimizer.hpp"
 #include "solvers/renewal_rule.hpp"
+#include "solvers/wall_clock.hpp"
 
-#include <chrono>
 #include <iomanip>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
 
 namespace spatula::solvers {
-
-inline double now()
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 // The state of one minimization: the shift eta of the tangent (relative to `scale`, the mean diagonal), where its
 // iterations went (for the diagnosis of a descent that does not settle) and their table.
@@ -43,8 +39,14 @@ struct EnergyMinimizer::Descent {
     kept = 0;
     cycle_began = now();
   }
-  // A stiffer shift (the tangent was indefinite, or Pi did not decrease along its direction).
-  void shift_more(double growth) { eta = eta == 0.0 ? 1e-6 * scale : growth * eta; }
+  // A stiffer shift (the tangent was indefinite, or Pi did not decrease along its direction); why the descent stops
+  // once the shift has passed the largest.
+  std::optional<std::string> stiffen(double growth)
+  {
+    eta = eta == 0.0 ? 1e-6 * scale : growth * eta;
+    if (shift_exhausted()) return exhausted_reason();
+    return std::nullopt;
+  }
   // A shift this far above the tangent's mean diagonal leaves a steepest descent with steps of rounding size: no
   // tangent of a body that is still connected is that indefinite, so the descent stops instead of growing it further.
   static constexpr double largest_shift = 1e10;

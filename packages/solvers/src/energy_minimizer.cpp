@@ -44,17 +44,17 @@ MumpsSolver& EnergyMinimizer::solver()
   return *solver_;
 }
 
-EnergyMinimizer::Point EnergyMinimizer::evaluate(const discretization::Vector& x, Descent& d, bool fresh,
-                                                 discretization::Vector& f)
+EnergyMinimizer::Point EnergyMinimizer::evaluate(const discretization::Vector& x, Descent& d, bool tangent,
+                                                 bool factor, discretization::Vector& f)
 {
   auto& system = model_.system();
-  if (fresh) system.set_damping(d.eta, Teuchos::rcpFromRef(x));   // anchored at x: a pure shift, f unchanged
-  const auto evaluation = system.evaluate(x, &f, fresh);
-  if (fresh) system.set_damping(0.0, Teuchos::null);
+  if (tangent) system.set_damping(d.eta, Teuchos::rcpFromRef(x));   // anchored at x: a pure shift, f unchanged
+  const auto evaluation = system.evaluate(x, &f, tangent);
+  if (tangent) system.set_damping(0.0, Teuchos::null);
   Point point{evaluation.admissible, evaluation.energy(), f.norm2(), 0};
   if (!point.admissible) return point;
   if (d.scale == 0.0) d.scale = system.mean_diagonal();
-  if (fresh) {
+  if (factor) {
     try {
       solver().factor(*system.jacobian());
       point.negative_pivots = solver().statistics().negative_pivots;
@@ -103,13 +103,12 @@ std::optional<std::string> EnergyMinimizer::descend_to_small_gradient(discretiza
     // Kept factors still give a descent direction -M^-1 f; the iteration then needs only f and Pi. Otherwise the
     // tangent at x is assembled and factored.
     const bool fresh = d.kept == 0;
-    const auto point = evaluate(x, d, fresh, *f);
+    const auto point = evaluate(x, d, fresh, fresh, *f);
     if (!point.admissible) return std::string("an element inverted during the energy descent");
     if (point.negative_pivots > 0) {   // not a descent direction yet: shift more
       d.row(tables_, point.negative_pivots, point.residual, 0.0, point.energy);
       ++d.indefinite;
-      d.shift_more(parameters_.shift_growth);
-      if (d.shift_exhausted()) return d.exhausted_reason();
+      if (auto stop = d.stiffen(parameters_.shift_growth)) return stop;
       continue;
     }
     // Near a stable minimum (positive definite tangent, small gradient): the equilibrium solver finishes. The energy
@@ -154,8 +153,7 @@ std::optional<std::string> EnergyMinimizer::descend_to_small_gradient(discretiza
       d.table << "  descent  (not a descent direction: slope " << slope << " nN nm; shifting the tangent)\n";
     if (best.step == 0.0) {   // no decrease along this direction: stiffen the shift
       ++d.no_decrease;
-      d.shift_more(parameters_.shift_growth);
-      if (d.shift_exhausted()) return d.exhausted_reason();
+      if (auto stop = d.stiffen(parameters_.shift_growth)) return stop;
       continue;
     }
     ++d.accepted;

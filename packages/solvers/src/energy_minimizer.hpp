@@ -83,7 +83,10 @@ public:
 private:
   struct Descent;
   struct Point;
-  Point evaluate(const discretization::Vector& x, Descent& descent, bool fresh, discretization::Vector& f);
+  // The state at x (f, Pi, |f|); with `tangent` the tangent shifted by the descent's eta assembled, with `factor`
+  // also factored (the negative pivots of its inertia).
+  Point evaluate(const discretization::Vector& x, Descent& descent, bool tangent, bool factor,
+                 discretization::Vector& f);
   std::optional<std::string> descend_to_small_gradient(discretization::Vector& x, Descent& descent,
                                                        double small_gradient, const Watch& watch);
   std::optional<std::string> descend_by_trust_region(discretization::Vector& x, Descent& descent,

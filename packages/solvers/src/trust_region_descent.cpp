@@ -51,24 +51,13 @@ std::optional<std::string> EnergyMinimizer::descend_by_trust_region(Vector& x, D
     // The state, its gradient g = f and the tangent (shifted by the factors' eta) at x; fresh factors where none
     // are kept, the shift raised until they are positive definite.
     const bool fresh = !d.preconditioned;
-    system.set_damping(d.eta, Teuchos::rcpFromRef(x));   // anchored at x: a pure shift, f unchanged
-    const auto evaluation = system.evaluate(x, g.get(), true);
-    system.set_damping(0.0, Teuchos::null);
-    if (!evaluation.admissible) return std::string("an element inverted during the energy descent");
-    const Point point{true, evaluation.energy(), g->norm2(), -1};
-    if (d.scale == 0.0) d.scale = system.mean_diagonal();
+    const auto point = evaluate(x, d, true, fresh, *g);
+    if (!point.admissible) return std::string("an element inverted during the energy descent");
     if (fresh) {
-      int negative = 1;
-      try {
-        solver().factor(*system.jacobian());
-        negative = solver().statistics().negative_pivots;
-      } catch (const UnusableMatrix&) {   // singular: treat like indefinite
-      }
-      if (negative > 0) {
-        d.row(tables_, negative, point.residual, 0.0, point.energy);
+      if (point.negative_pivots > 0) {
+        d.row(tables_, point.negative_pivots, point.residual, 0.0, point.energy);
         ++d.indefinite;
-        d.shift_more(parameters_.shift_growth);
-        if (d.shift_exhausted()) return d.exhausted_reason();
+        if (auto stop = d.stiffen(parameters_.shift_growth)) return stop;
         continue;
       }
     } else {
