@@ -67,7 +67,7 @@ void NewtonParameters::declare(Teuchos::ParameterList& list)
   // energy (was backtrack): at the medium peel front Newton's steps fall short along their line (the energy's
   // slope keeps 25-35 % of its value at the step's end) and backtracking on |f| halves some of them; the medium
   // peel front (60 nm of lift from 45 deg) 120 -> 99 tangents, coarse pull-off at 45 deg 906 -> 873, results within
-  // 0.004 % (docs/performance.md).
+  // 0.004 %.
   parameters::declare_string(list, "line search", parameters::name_of(d.line_search, line_search_names()),
                              "step length control: backtrack or polynomial (cut the step until |f| falls), full step, "
                              "or energy (the zero of the energy's slope along Newton's direction, steps up to 4: "
