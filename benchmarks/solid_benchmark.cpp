@@ -10,6 +10,7 @@
 // resulting element throughput, the effective memory traffic of the tangent fill against a STREAM-like triad
 // measured in the same run, and the time of one Newton iteration split into assembly and linear solve.
 #include "analysis/load_stepping.hpp"
+#include "solvers/node_blocks.hpp"
 #include "parameters/parameter_validation.hpp"
 #include "mesh/spatula_mesher.hpp"
 
@@ -156,7 +157,7 @@ int main(int argc, char** argv)
   }
   if (factor_only) return factor_benchmark(*system, linear_parameters.mumps, level, repetitions, variant);
   solvers::LinearSolverFactory linear(linear_parameters,
-                                      std::make_shared<const discretization::NodeBlocks>(system->node_blocks()));
+                                      std::make_shared<const solvers::NodeBlocks>(solvers::node_blocks(*system)));
   auto model = Teuchos::rcp(new solvers::SpatulaModel(system, linear.lows_factory()));
   solvers::NewtonSolver newton(model, solvers::NewtonParameters{}, linear);
   const double bandwidth = triad_bandwidth();

@@ -1,5 +1,6 @@
 #include "checkpoint.hpp"
 
+#include "discretization/system_fields.hpp"
 #include "io/checked_write.hpp"
 
 #include "io/hdf5_file.hpp"
@@ -68,7 +69,7 @@ std::vector<double> masters_of(const discretization::DiscreteSystem& system, con
 void set_state(const discretization::DiscreteSystem& system, const std::vector<double>& displacements,
                const std::vector<double>& masters, discretization::Vector& x)
 {
-  system.set_space_displacements(x, displacements);
+  discretization::set_space_displacements(system, x, displacements);
   for (int m = 0; m < discretization::master_count; ++m) system.set_master(x, discretization::Master(m), masters[m]);
 }
 
@@ -96,9 +97,11 @@ void write_checkpoint(const std::string& file, const std::string& label, const d
                       const Scene& scene, const RunRecord& record, const discretization::Vector* anchors,
                       const analysis::LoadPath::JumpInProgress* jump)
 {
-  const auto displacements = system.space_displacements(x);   // collective
-  const auto anchor_displacements = anchors ? system.space_displacements(*anchors) : std::vector<double>{};
-  const auto jump_displacements = jump ? system.space_displacements(*jump->state) : std::vector<double>{};
+  const auto displacements = discretization::space_displacements(system, x);   // collective
+  const auto anchor_displacements =
+      anchors ? discretization::space_displacements(system, *anchors) : std::vector<double>{};
+  const auto jump_displacements =
+      jump ? discretization::space_displacements(system, *jump->state) : std::vector<double>{};
   const auto masters = masters_of(system, x);
   const auto jump_masters = jump ? masters_of(system, *jump->state) : std::vector<double>{};
   if (system.owned_map()->getComm()->getRank() != 0) return;
@@ -174,7 +177,8 @@ bool holds_anchors(const std::string& file)
 void read_anchors(const Scene& scene, const discretization::DiscreteSystem& system, discretization::Vector& anchors)
 {
   io::Hdf5File in(scene.loading.restart_file, io::Hdf5File::Mode::read);
-  system.set_space_displacements(anchors, in.read_doubles("/checkpoints/" + restart_label(scene.loading) + "/anchors"));
+  discretization::set_space_displacements(
+      system, anchors, in.read_doubles("/checkpoints/" + restart_label(scene.loading) + "/anchors"));
 }
 
 RunRecord read_run_record(const Scene& scene)

@@ -4,7 +4,9 @@
 #include "interruption.hpp"
 #include "progress_report.hpp"
 
+#include "discretization/system_fields.hpp"
 #include "io/checked_write.hpp"
+#include "solvers/node_blocks.hpp"
 #include "solvers/out_of_memory.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
@@ -48,7 +50,7 @@ Run::Run(const Scene& scene, const geometry::SpatulaShape& shape, const mesh::He
     : scene_(scene), mesh_(mesh), comm_(comm), root_(comm->getRank() == 0), directory_(directory), fields_(fields),
       out_(out), options_(system_options(scene)), system_(make_system(scene, shape, mesh, partition, comm, options_)),
       linear_(scene.linear_solver, scene.linear_solver.type == solvers::LinearSolverType::gmres_amg
-                                       ? std::make_shared<const discretization::NodeBlocks>(system_->node_blocks())
+                                       ? std::make_shared<const solvers::NodeBlocks>(solvers::node_blocks(*system_))
                                        : nullptr),
       model_(Teuchos::rcp(new solvers::SpatulaModel(system_, linear_.lows_factory()))),
       newton_(model_, scene.newton, linear_),
@@ -88,8 +90,8 @@ void Run::write_fields(const Vector& x, double time)
 {
   io::FieldState state;
   state.time = time;
-  state.displacement = system_->node_displacements(x);
-  auto trace = system_->element_cauchy_trace(x);
+  state.displacement = discretization::node_displacements(*system_, x);
+  auto trace = discretization::element_cauchy_trace(*system_, x);
   for (auto& value : trace) value /= young_;
   state.cell_scalars["I1"] = std::move(trace);   // the paper's colour scale: tr(sigma) / E
   if (fields_) fields_->add_state(state);
@@ -192,7 +194,7 @@ std::optional<Stop> Run::press_onto_rough_substrate()
     u[3 * n + 2] = weight * (S - top);
   }
   auto guess = system_->create_vector();
-  system_->set_displacements(*guess, u);
+  discretization::set_displacements(*system_, *guess, u);
   const auto failure =
       path_.equilibrate(*guess, scene_.loading.stages.front().control());
   if (failure) {   // before any load: the stage is the rotation's start, the reason says what failed

@@ -3,6 +3,7 @@
 // enrichment against finite differences, the residual as the energy's gradient, 1 vs 2 ranks, the same assembly on
 // any Kokkos backend and thread count as the Serial build's (stored values), and the law registry open to new laws.
 #include "contact/adhesion.hpp"
+#include "discretization/system_fields.hpp"
 #include "mesh/box_mesh.hpp"
 #include "contact/contact_registry.hpp"
 #include "analysis/load_stepping.hpp"
@@ -78,7 +79,7 @@ struct Spatula {
       u[3 * n + 1] = 0.02 * X[1] / 100.0;
       u[3 * n + 2] = 0.3 * std::max(0.0, std::sin(0.01 * X[0] + 0.02 * X[1])) + 0.02;
     }
-    system.set_displacements(*x, u);
+    discretization::set_displacements(system, *x, u);
     system.set_master(*x, Master::rotation, 0.01);
     return x;
   }
@@ -210,8 +211,8 @@ TEST(Adhesion, SameOnAllRanksAndOnOne)
   std::vector<double> u(3 * spatula.mesh.node_count());
   for (std::int64_t n = 0; n < spatula.mesh.node_count(); ++n) u[3 * n + 2] = 0.001 * spatula.mesh.coordinates[n][0];
   auto xa = a->create_vector(), xb = b->create_vector();
-  a->set_displacements(*xa, u);
-  b->set_displacements(*xb, u);
+  discretization::set_displacements(*a, *xa, u);
+  discretization::set_displacements(*b, *xb, u);
   auto fa = a->create_vector(), fb = b->create_vector();
   const auto ea = a->evaluate(*xa, fa.get(), true), eb = b->evaluate(*xb, fb.get(), true);
   EXPECT_NEAR(ea.contact_energy, eb.contact_energy, 1e-12 * std::abs(eb.contact_energy));
@@ -234,9 +235,9 @@ std::vector<std::pair<std::string, double>> assembly_fingerprint(const std::stri
   const auto evaluation = system->evaluate(*x, f.get(), true);
   EXPECT_TRUE(evaluation.admissible);
   // w by node of the node space (mesh and enrichment nodes), not by unknown id, which depends on the partition.
-  std::vector<double> nodal(system->space_displacements(*x).size());
+  std::vector<double> nodal(discretization::space_displacements(*system, *x).size());
   for (std::size_t i = 0; i < nodal.size(); ++i) nodal[i] = std::sin(0.37 * double(i) + 0.1);
-  system->set_space_displacements(*w, nodal);
+  discretization::set_space_displacements(*system, *w, nodal);
   system->jacobian()->apply(*w, *kw);
   return {{"internal energy", evaluation.internal_energy}, {"contact energy", evaluation.contact_energy},
           {"moment", evaluation.master_residual[0]}, {"lift force", evaluation.master_residual[1]},
@@ -293,13 +294,13 @@ TEST(Adhesion, FacesBeyondTheCutOffAreSkippedButKeepTheirEnergy)
   for (std::int64_t n = 0; n < spatula.mesh.node_count(); ++n)   // the pad beyond X = 200 nm lifted by 20 nm
     if (spatula.mesh.coordinates[n][0] > 200.0) u[3 * n + 2] = 20.0;
   auto x = system->create_vector(), f = system->create_vector();
-  system->set_displacements(*x, u);
+  discretization::set_displacements(*system, *x, u);
   const auto evaluation = system->evaluate(*x, f.get(), false);
   EXPECT_GT(evaluation.skipped_contact_faces, 0);
   EXPECT_GT(evaluation.active_contact_faces, 0);
   // Lifting everything: every face skipped, energy phi(r_cut) per unit area, no adhesion force at all.
   for (std::int64_t n = 0; n < spatula.mesh.node_count(); ++n) u[3 * n + 2] = 20.0;
-  system->set_displacements(*x, u);
+  discretization::set_displacements(*system, *x, u);
   const auto far = system->evaluate(*x, f.get(), false);
   EXPECT_EQ(far.active_contact_faces, 0);
   double phi_cut, unused1, unused2;
@@ -318,8 +319,8 @@ TEST(Adhesion, SkippingDistantFacesChangesNothingButTheWork)
   for (std::int64_t n = 0; n < spatula.mesh.node_count(); ++n)   // a peel: the pad beyond X = 150 nm rises
     u[3 * n + 2] = std::max(0.0, 0.2 * (spatula.mesh.coordinates[n][0] - 150.0));
   auto xa = skipping->create_vector(), xb = every->create_vector();
-  skipping->set_displacements(*xa, u);
-  every->set_displacements(*xb, u);
+  discretization::set_displacements(*skipping, *xa, u);
+  discretization::set_displacements(*every, *xb, u);
   auto fa = skipping->create_vector(), fb = every->create_vector();
   const auto a = skipping->evaluate(*xa, fa.get(), true), b = every->evaluate(*xb, fb.get(), true);
   EXPECT_GT(a.skipped_contact_faces, 0);
@@ -366,7 +367,7 @@ TEST(ContactRegistry, ANewLawIsUsedByNameWithoutTouchingTheSolver)
   std::vector<double> u(3 * spatula.mesh.node_count(), 0.0);
   for (auto& value : u) value = 0.0;
   for (std::int64_t n = 0; n < spatula.mesh.node_count(); ++n) u[3 * n + 2] = 0.1;   // everything lifted 0.1 nm
-  system->set_displacements(*x, u);
+  discretization::set_displacements(*system, *x, u);
   const auto evaluation = system->evaluate(*x, f.get(), false);
   // phi = k/2 0.1^2 over the contact area (the spring's energy, nothing else of the adhesion).
   EXPECT_NEAR(evaluation.contact_energy, 0.5 * 3.0 * 0.01 * system->contact_area(), 1e-9);

@@ -8,6 +8,7 @@
 //   - a descent stopped by its watch and resumed from what the watch saw ends where the uninterrupted one does.
 // Both methods (shifted Newton, trust region) end on the same states.
 #include "adhering_bar.hpp"
+#include "discretization/system_fields.hpp"
 #include "solvers/energy_minimizer.hpp"
 
 #include <gtest/gtest.h>
@@ -41,7 +42,7 @@ struct Minimization : test::AdheringBar {
     std::vector<double> u(3 * mesh.node_count(), 0.0);
     for (std::int64_t n = 0; n < mesh.node_count(); ++n)
       u[3 * n + 2] = (g - bar.law.equilibrium_gap()) + mesh.coordinates[n][2] * (s - 1.0);
-    system->set_displacements(*x, u);
+    discretization::set_displacements(*system, *x, u);
     system->set_master(*x, Master::lift, w);
     return x;
   }

@@ -5,6 +5,7 @@
 // rest's; Newton with the relaxation before every direction, or after full steps, reaches the equilibrium Newton
 // reaches without it.
 #include "contact/adhesion.hpp"
+#include "discretization/system_fields.hpp"
 #include "mesh/box_mesh.hpp"
 #include "solvers/newton.hpp"
 
@@ -75,12 +76,12 @@ struct AdheringBar {
   // The equilibrium with one bottom node (the corner at x = 0, y = 0) moved up by `offset`.
   Teuchos::RCP<discretization::Vector> pushed(const discretization::Vector& equilibrium, double offset) const
   {
-    auto u = system->node_displacements(equilibrium);
+    auto u = discretization::node_displacements(*system, equilibrium);
     for (std::int64_t n = 0; n < mesh.node_count(); ++n)
       if (mesh.coordinates[n][0] == 0.0 && mesh.coordinates[n][1] == 0.0 && mesh.coordinates[n][2] == 0.0)
         u[3 * n + 2] += offset;
     auto x = Teuchos::rcp(new discretization::Vector(equilibrium, Teuchos::Copy));
-    system->set_displacements(*x, u);
+    discretization::set_displacements(*system, *x, u);
     return x;
   }
 };

@@ -1,7 +1,8 @@
 #pragma once
-// The distributed nonlinear system of the spatula: Tpetra maps over the unknowns of dof_layout.hpp, an FE graph
-// built once, and assembly of the residual and the consistent tangent by labelled Kokkos kernels over each rank's
-// elements (FECrsMatrix / FEMultiVector fill, shared rows summed at endFill).
+// The distributed nonlinear system of the spatula: assembly of the residual and the consistent tangent by labelled
+// Kokkos kernels over each rank's elements and contact faces (FECrsMatrix / FEMultiVector fill, shared rows summed at
+// endFill), on what a rank holds (its maps, the FE graph built once, the device views: system_topology.hpp). The
+// state as fields over the mesh: system_fields.hpp.
 //
 // Unknowns are displacements [nm] and the three end-face masters: rotation alpha [rad], lift w and slide s [nm].
 // Residual rows are internal forces [nN] (the master rows: moment [nN nm] and forces on the face, half spatula).
@@ -22,6 +23,8 @@
 #include <string>
 
 namespace spatula::discretization {
+
+struct SystemTopology;
 
 struct SolidParameters {
   double young = 2.0;     // E [GPa] = [nN / nm^2]
@@ -67,18 +70,6 @@ struct SystemOptions {
   std::shared_ptr<const ContactModel> contact;
 };
 
-// The displacement unknowns padded to three rows per node, the form smoothed aggregation works on: every node with
-// an unknown gets a block of three rows (a fixed component a row of its own, with no unknown behind it), and the
-// three masters one more block. Each block lives on the rank owning the node's unknowns.
-struct NodeBlocks {
-  Teuchos::RCP<const Map> map;                     // the padded rows this rank owns
-  std::vector<GlobalOrdinal> row_of_unknown;       // per global unknown, its padded row (complete on every rank)
-  GlobalOrdinal master_block = 0;                  // the first padded row of the masters' block
-  // On `map`: the six rigid-body motions (translations along X, Y, Z, rotations about X, Y, Z through the
-  // centroid of the node space) at the nodes' rows, zero in the masters' block: the near-null space of elasticity.
-  Teuchos::RCP<MultiVector> rigid_body_modes;
-};
-
 class DiscreteSystem {
 public:
   DiscreteSystem(const mesh::HexMesh& mesh, const mesh::Partition& partition, const Constraints& constraints,
@@ -118,21 +109,10 @@ public:
   // Mean absolute diagonal of the last assembled tangent (the scale for eta).
   double mean_diagonal() const;
 
-  // Writes nodal displacements u (N x 3, row-major, all mesh nodes) into the free unknowns of x that this rank
-  // owns (fixed and rigid components are not unknowns and are ignored).
-  void set_displacements(Vector& x, const std::vector<double>& u) const;
-
-  // The unknowns in 3 x 3 node blocks, for smoothed aggregation (see NodeBlocks). Collective.
-  NodeBlocks node_blocks() const;
-
-  // Nodal displacements (N x 3, row-major, every node of the mesh including fixed and rigid ones) and the
-  // element field tr(sigma) [GPa], both complete on every rank (for output and diagnostics).
-  std::vector<double> node_displacements(const Vector& x) const;
-  // The same over every node of the node space (mesh and enrichment nodes): what a checkpoint stores, and its
-  // inverse (the masters are set separately).
-  std::vector<double> space_displacements(const Vector& x) const;
-  void set_space_displacements(Vector& x, const std::vector<double>& u) const;
-  std::vector<double> element_cauchy_trace(const Vector& x) const;
+  // What one rank holds (elements, maps, graph, device views) and the solid's parameters: for the fields of
+  // system_fields.hpp and diagnostics.
+  const SystemTopology& topology() const;
+  const SolidParameters& solid() const;
 
 private:
   struct Implementation;

@@ -12,9 +12,6 @@
 
 namespace spatula::discretization {
 
-template <class T>
-using DeviceView = Kokkos::View<T, device_type>;
-
 // Bulk solid: one element per work item (Hex8 or Hex13); reduces the energy, reports an inverted element.
 template <class Shape>
 struct SolidKernel {

@@ -25,5 +25,7 @@ using FEMultiVector = Tpetra::FEMultiVector<Scalar, LocalOrdinal, GlobalOrdinal,
 using Operator = Tpetra::Operator<Scalar, LocalOrdinal, GlobalOrdinal, Node>;
 using device_type = Node::device_type;
 using execution_space = device_type::execution_space;
+template <class T>
+using DeviceView = Kokkos::View<T, device_type>;   // a view in the memory the kernels run on
 
 }  // namespace spatula::discretization

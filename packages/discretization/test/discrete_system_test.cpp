@@ -1,6 +1,7 @@
 // The assembled system: the tangent (with the rigid end face's chain rule) against finite differences of the
 // residual, identity rows of prescribed masters with their reactions, and identical results on 1 and 2 ranks.
 #include "discretization/discrete_system.hpp"
+#include "discretization/system_fields.hpp"
 #include "mesh/spatula_mesher.hpp"
 
 #include <Teuchos_DefaultComm.hpp>
@@ -52,7 +53,7 @@ TEST(DiscreteSystem, TangentIsTheResidualDerivative)
   auto system = fixture.system(comm);
   system->set_control({{false, false, false}});   // all masters free: their rows and couplings are tested too
   auto x = system->create_vector();
-  system->set_displacements(*x, fixture.field());
+  discretization::set_displacements(*system, *x, fixture.field());
   system->set_master(*x, Master::rotation, 0.05);
   system->set_master(*x, Master::lift, 1.5);
   auto f = system->create_vector();
@@ -82,7 +83,7 @@ TEST(DiscreteSystem, PrescribedMastersGiveIdentityRowsAndReactions)
   auto comm = Teuchos::DefaultComm<int>::getComm();
   auto system = fixture.system(comm);
   auto x = system->create_vector();
-  system->set_displacements(*x, fixture.field());
+  discretization::set_displacements(*system, *x, fixture.field());
   system->set_master(*x, Master::rotation, 0.03);
   auto f = system->create_vector();
   const auto evaluation = system->evaluate(*x, f.get(), true);
@@ -113,8 +114,8 @@ TEST(DiscreteSystem, SameResultsOnAllRanksAndOnOne)
   auto serial = fixture.system(self);
   const auto u = fixture.field();
   auto x_world = distributed->create_vector(), x_self = serial->create_vector();
-  distributed->set_displacements(*x_world, u);
-  serial->set_displacements(*x_self, u);
+  discretization::set_displacements(*distributed, *x_world, u);
+  discretization::set_displacements(*serial, *x_self, u);
   for (auto* s : {distributed.get(), serial.get()}) s->set_control({{false, false, false}});
   distributed->set_master(*x_world, Master::rotation, 0.04);
   serial->set_master(*x_self, Master::rotation, 0.04);
@@ -127,7 +128,8 @@ TEST(DiscreteSystem, SameResultsOnAllRanksAndOnOne)
   EXPECT_NEAR(distributed->jacobian()->getFrobeniusNorm(), serial->jacobian()->getFrobeniusNorm(),
               1e-12 * serial->jacobian()->getFrobeniusNorm());
   // Full nodal fields agree too.
-  const auto ua = distributed->node_displacements(*x_world), ub = serial->node_displacements(*x_self);
+  const auto ua = discretization::node_displacements(*distributed, *x_world);
+  const auto ub = discretization::node_displacements(*serial, *x_self);
   for (std::size_t i = 0; i < ua.size(); ++i) ASSERT_NEAR(ua[i], ub[i], 1e-13);
 }
 
@@ -139,7 +141,7 @@ TEST(DiscreteSystem, InvertedElementIsReportedNotNaN)
   std::vector<double> u(3 * fixture.mesh.node_count(), 0.0);
   for (std::int64_t n = 0; n < fixture.mesh.node_count(); ++n)
     if (fixture.mesh.coordinates[n][2] > 5.0 && fixture.mesh.coordinates[n][0] > 200.0) u[3 * n + 2] = -200.0;
-  system->set_displacements(*x, u);
+  discretization::set_displacements(*system, *x, u);
   auto f = system->create_vector();
   const auto evaluation = system->evaluate(*x, f.get(), true);
   EXPECT_FALSE(evaluation.admissible);

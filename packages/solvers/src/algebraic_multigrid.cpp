@@ -50,7 +50,7 @@ Teuchos::ParameterList multigrid_list(const Teuchos::Comm<int>& comm, Teuchos::R
 }  // namespace
 
 struct AlgebraicMultigrid::State {
-  std::shared_ptr<const discretization::NodeBlocks> blocks;
+  std::shared_ptr<const NodeBlocks> blocks;
   int stall_applications = 0;
   MultigridStatistics statistics;
   long applications_at_init = 0;
@@ -250,7 +250,7 @@ private:
 
 }  // namespace
 
-AlgebraicMultigrid::AlgebraicMultigrid(std::shared_ptr<const discretization::NodeBlocks> blocks,
+AlgebraicMultigrid::AlgebraicMultigrid(std::shared_ptr<const NodeBlocks> blocks,
                                        int stall_applications)
     : state_(std::make_shared<State>())
 {

@@ -1,13 +1,13 @@
 #pragma once
 // Algebraic multigrid for the Newton tangents (Linear Solver/type = gmres-amg): MueLu smoothed aggregation on a copy
-// of the tangent padded to 3 x 3 node blocks (discretization::NodeBlocks: the rows smoothed aggregation amalgamates
+// of the tangent padded to 3 x 3 node blocks (solvers::NodeBlocks: the rows smoothed aggregation amalgamates
 // into nodes), with the six rigid-body modes as near-null space and Chebyshev smoothing. The masters' block is kept
 // to its diagonal (its dense couplings to the end face's neighbours are left to GMRES: a difference of rank at most
 // 6). The hierarchy is built on the first tangent and reused by the later ones (prolongators kept, coarse operators
 // and smoothers rebuilt). A tangent whose solves took `stall_applications` V-cycles or more (a GMRES that ran to its
 // iteration limit: an indefinite tangent past a fold, a pad too thin for the aggregation) hands every later tangent
 // to the fallback (MUMPS).
-#include "discretization/discrete_system.hpp"
+#include "solvers/node_blocks.hpp"
 
 #include <Thyra_PreconditionerFactoryBase.hpp>
 
@@ -24,7 +24,7 @@ struct MultigridStatistics {
 
 class AlgebraicMultigrid {
 public:
-  AlgebraicMultigrid(std::shared_ptr<const discretization::NodeBlocks> blocks, int stall_applications);
+  AlgebraicMultigrid(std::shared_ptr<const NodeBlocks> blocks, int stall_applications);
   ~AlgebraicMultigrid();
 
   // A Thyra preconditioner factory over this hierarchy (Stratimikos makes one per linear solver it builds).

@@ -242,7 +242,7 @@ struct LinearSolverFactory::Implementation {
 };
 
 LinearSolverFactory::LinearSolverFactory(const LinearSolverParameters& parameters,
-                                         std::shared_ptr<const discretization::NodeBlocks> node_blocks)
+                                         std::shared_ptr<const NodeBlocks> node_blocks)
     : implementation_(std::make_unique<Implementation>())
 {
   auto& impl = *implementation_;

@@ -68,9 +68,9 @@ const std::vector<std::string>& linear_solver_names();
 
 class LinearSolverFactory {
 public:
-  // node_blocks: the unknowns in node blocks (DiscreteSystem::node_blocks); gmres-amg needs them.
+  // node_blocks: the unknowns in node blocks (solvers::node_blocks); gmres-amg needs them.
   explicit LinearSolverFactory(const LinearSolverParameters& parameters,
-                               std::shared_ptr<const discretization::NodeBlocks> node_blocks = nullptr);
+                               std::shared_ptr<const NodeBlocks> node_blocks = nullptr);
   ~LinearSolverFactory();
 
   Teuchos::RCP<const Thyra::LinearOpWithSolveFactoryBase<double>> lows_factory() const;

@@ -2,6 +2,7 @@
 // solver and forcing term reaches the same equilibrium, whose reactions balance (zero net lift force, a positive
 // restoring moment), and a fresh factorization per iteration converges quadratically.
 #include "solvers/newton.hpp"
+#include "solvers/node_blocks.hpp"
 #include "same_fields.hpp"
 #include "mesh/spatula_mesher.hpp"
 
@@ -31,7 +32,7 @@ Equilibrium rotate(const solvers::LinearSolverParameters& linear_parameters, sol
   auto system = Teuchos::rcp(new discretization::DiscreteSystem(
       mesh, partition, discretization::spatula_constraints(mesh, {p1.x, p1.y, p1.z}, true), {}, comm));
   solvers::LinearSolverFactory linear(linear_parameters,
-                                      std::make_shared<const discretization::NodeBlocks>(system->node_blocks()));
+                                      std::make_shared<const solvers::NodeBlocks>(solvers::node_blocks(*system)));
   auto model = Teuchos::rcp(new solvers::SpatulaModel(system, linear.lows_factory()));
   newton_parameters.relative_tolerance = 1e-12;
   newton_parameters.update_tolerance = 1e-10;
