@@ -85,7 +85,7 @@ fi
 say "compiling tests/device/element_kernels_on_device.cpp for $SM"
 INCLUDE="$WORK/kokkos-cuda-check/include"
 mkdir -p "$INCLUDE"
-for package in laws elements mesh; do ln -sfn "$ROOT/packages/$package/src" "$INCLUDE/$package"; done
+for package in laws elements mesh contact; do ln -sfn "$ROOT/packages/$package/src" "$INCLUDE/$package"; done
 export NVCC_WRAPPER_DEFAULT_ARCH=$SM
 # Compiled by Kokkos' wrapper, linked by nvcc itself (the wrapper puts libraries before the object, in front of what
 # needs them).

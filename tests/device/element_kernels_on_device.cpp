@@ -7,7 +7,7 @@
 // Covered: the Neo-Hookean law in Hex8 and Hex13 (Q1C2) solids, the frictionless Lennard-Jones law on flat and rough
 // substrates and the stiction law in Q1C2 contact faces (Quad9), and Q1C1 faces (Quad4). Not covered: the scatter
 // into the Tpetra matrix (element_scatter.hpp), which needs a CUDA Tpetra.
-#include "elements/contact_face.hpp"
+#include "contact/contact_face.hpp"
 #include "elements/solid_element.hpp"
 #include "laws/neo_hookean.hpp"
 
@@ -74,13 +74,13 @@ KOKKOS_INLINE_FUNCTION void fingerprint(double energy, const double r[n], const 
 
 struct Kernels {
   laws::NeoHookean solid = laws::NeoHookean::from_young(2.0, 0.2);
-  elements::FrictionlessIntegrand<laws::FlatSubstrate> flat;
-  elements::FrictionlessIntegrand<laws::RoughSubstrate> rough;
-  elements::StictionIntegrand stiction;
+  contact::FrictionlessIntegrand<contact::FlatSubstrate> flat;
+  contact::FrictionlessIntegrand<contact::RoughSubstrate> rough;
+  contact::StictionIntegrand stiction;
 
   Kernels()
   {
-    laws::LennardJones law;
+    contact::LennardJones law;
     law.hamaker = 0.1;
     law.r0 = 0.4;
     law.r_reg = 0.8 * law.equilibrium_gap();
@@ -111,10 +111,10 @@ struct Kernels {
     }
     double X[9][3], u[9][3], r[27], K[27][27];
     face_nodes(element, X, u);
-    elements::ContactFaceResult result;
-    if (kind == 2) result = elements::contact_face<elements::Quad9Surface>(flat, X, u, 6, r, K);
-    if (kind == 3) result = elements::contact_face<elements::Quad9Surface>(rough, X, u, 6, r, K);
-    if (kind == 4) result = elements::contact_face<elements::Quad9Surface>(stiction, X, u, 6, r, K);
+    contact::ContactFaceResult result;
+    if (kind == 2) result = contact::contact_face<elements::Quad9Surface>(flat, X, u, 6, r, K);
+    if (kind == 3) result = contact::contact_face<elements::Quad9Surface>(rough, X, u, 6, r, K);
+    if (kind == 4) result = contact::contact_face<elements::Quad9Surface>(stiction, X, u, 6, r, K);
     if (kind <= 4) {
       fingerprint<27>(result.energy, r, K, f);
       return f;
@@ -122,7 +122,7 @@ struct Kernels {
     double X4[4][3], u4[4][3], r4[12], K4[12][12];
     for (int k = 0; k < 4; ++k)
       for (int i = 0; i < 3; ++i) X4[k][i] = X[k][i], u4[k][i] = u[k][i];
-    result = elements::contact_face<elements::Quad4Surface>(flat, X4, u4, 6, r4, K4);
+    result = contact::contact_face<elements::Quad4Surface>(flat, X4, u4, 6, r4, K4);
     fingerprint<12>(result.energy, r4, K4, f);
     return f;
   }

@@ -23,8 +23,8 @@ struct AdhesionSettings {
   SubstrateKind substrate = SubstrateKind::flat;
   discretization::Enrichment enrichment = discretization::Enrichment::q1c2;
   int quadrature = 6;                  // Gauss points per direction on each contact face
-  laws::LennardJones lennard_jones;    // A_H [nN nm], r0, r_reg, r_cut [nm]
-  laws::RoughSubstrate rough;          // z0, h, lambda (base set from r_eq: asperity tops at -r_eq)
+  contact::LennardJones lennard_jones;    // A_H [nN nm], r0, r_reg, r_cut [nm]
+  contact::RoughSubstrate rough;          // z0, h, lambda (base set from r_eq: asperity tops at -r_eq)
   double substrate_height = 0.0;       // flat: the plane z = -r_eq, so the undeformed pad is traction-free
   bool conform = true;                 // rough: start from the pad pressed onto the asperities
   bool skip_distant_faces = true;      // integrate only faces with a point within the cut-off

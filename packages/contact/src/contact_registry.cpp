@@ -1,10 +1,9 @@
 #include "contact/contact_registry.hpp"
 
+#include "contact/contact_kernel.hpp"
 #include "parameters/parameter_validation.hpp"
 
 namespace spatula::contact {
-
-using discretization::IntegrandContactModel;
 
 const std::vector<std::string>& substrate_names()
 {
@@ -30,11 +29,11 @@ std::shared_ptr<const discretization::ContactModel> frictionless(const AdhesionS
 {
   const double w = s.lennard_jones.work_of_adhesion();
   if (s.substrate == SubstrateKind::flat) {
-    elements::FrictionlessIntegrand<laws::FlatSubstrate> integrand{s.lennard_jones, {s.substrate_height}};
+    contact::FrictionlessIntegrand<contact::FlatSubstrate> integrand{s.lennard_jones, {s.substrate_height}};
     return std::make_shared<IntegrandContactModel<decltype(integrand)>>(integrand, s.quadrature, describe(s), w,
                                                                         s.skip_distant_faces);
   }
-  elements::FrictionlessIntegrand<laws::RoughSubstrate> integrand{s.lennard_jones, s.rough};
+  contact::FrictionlessIntegrand<contact::RoughSubstrate> integrand{s.lennard_jones, s.rough};
   return std::make_shared<IntegrandContactModel<decltype(integrand)>>(integrand, s.quadrature, describe(s), w,
                                                                         s.skip_distant_faces);
 }
@@ -45,7 +44,7 @@ std::shared_ptr<const discretization::ContactModel> stiction(const AdhesionSetti
     throw parameters::InputError("parameter 'Adhesion/law' = 'stiction' needs 'Adhesion/substrate' = 'flat' (got '" +
                                  parameters::name_of(s.substrate, substrate_names()) +
                                  "'): tangential travel on a curved substrate is not defined");
-  elements::StictionIntegrand integrand{{s.lennard_jones, s.substrate_height}};
+  contact::StictionIntegrand integrand{{s.lennard_jones, s.substrate_height}};
   const std::string anchors = s.anchor_at_restart ? ", travel measured from the restart state"
                                                   : ", travel measured from the undeformed state";
   return std::make_shared<IntegrandContactModel<decltype(integrand)>>(integrand, s.quadrature, describe(s, anchors),

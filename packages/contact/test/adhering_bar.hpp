@@ -16,7 +16,7 @@
 namespace spatula::test {
 
 struct AnalyticBar {
-  laws::LennardJones law;
+  contact::LennardJones law;
   double mu = 1.0, height = 40.0;
 
   double derivative(double g) const

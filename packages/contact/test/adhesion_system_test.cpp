@@ -3,6 +3,7 @@
 // enrichment against finite differences, the residual as the energy's gradient, 1 vs 2 ranks, the same assembly on
 // any Kokkos backend and thread count as the Serial build's (stored values), and the law registry open to new laws.
 #include "contact/adhesion.hpp"
+#include "contact/contact_kernel.hpp"
 #include "discretization/system_fields.hpp"
 #include "mesh/box_mesh.hpp"
 #include "contact/contact_registry.hpp"
@@ -357,7 +358,7 @@ TEST(ContactRegistry, ANewLawIsUsedByNameWithoutTouchingTheSolver)
 {
   contact::ContactLawRegistry::instance().add("test spring", [](const contact::AdhesionSettings& s) {
     SpringIntegrand spring{3.0, s.substrate_height, s.lennard_jones.equilibrium_gap()};
-    return std::make_shared<discretization::IntegrandContactModel<SpringIntegrand>>(spring, s.quadrature,
+    return std::make_shared<contact::IntegrandContactModel<SpringIntegrand>>(spring, s.quadrature,
                                                                                    "test spring", 0.0);
   });
   auto s = settings(discretization::Enrichment::q1c1, "test spring");
@@ -410,9 +411,9 @@ TEST(Adhesion, AnEmptyListReadsBackAsTheTypedDefaults)
   const auto& t = d.settings;
   expect_same_fields(read.settings, t, &Settings::substrate, &Settings::enrichment, &Settings::quadrature,
                      &Settings::skip_distant_faces, &Settings::anchor_at_restart, &Settings::conform);
-  using Law = laws::LennardJones;
+  using Law = contact::LennardJones;
   expect_same_fields(read.settings.lennard_jones, t.lennard_jones, &Law::hamaker, &Law::r0);
-  using Rough = laws::RoughSubstrate;
+  using Rough = contact::RoughSubstrate;
   expect_same_fields(read.settings.rough, t.rough, &Rough::z0, &Rough::width, &Rough::spacing);
   list.set("specification", std::string("normalized"));
   const auto normalized = contact::AdhesionParameters::from(list, young).settings.lennard_jones;

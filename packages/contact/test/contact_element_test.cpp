@@ -1,6 +1,6 @@
 // Contact faces (Q1C1 and Q1C2) with every law and substrate: residual and tangent against finite differences of
 // the energy and residual; the undeformed face at the equilibrium gap stores -w_adh per unit area.
-#include "elements/contact_face.hpp"
+#include "contact/contact_face.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,9 +10,9 @@ using namespace spatula;
 
 namespace {
 
-laws::LennardJones law()
+contact::LennardJones law()
 {
-  laws::LennardJones lj;
+  contact::LennardJones lj;
   lj.r_reg = 0.8 * lj.equilibrium_gap();
   lj.r_cut = 5.0;
   return lj;
@@ -50,7 +50,7 @@ void expect_consistent(const Integrand& integrand, double lift = 0.0, const doub
     u[k][2] += lift;
     for (int i = 0; i < 3; ++i) A[k][i] = X[k][i] + (shift ? shift[i] : 0.0);
   }
-  const auto result = elements::contact_face<Surface>(integrand, X, A, u, 5, r, K);
+  const auto result = contact::contact_face<Surface>(integrand, X, A, u, 5, r, K);
   ASSERT_GT(result.active_points, 0);
   const double h = 1e-7;
   double worst_r = 0.0, worst_K = 0.0, largest_r = 0.0, largest_K = 0.0;
@@ -60,8 +60,8 @@ void expect_consistent(const Integrand& integrand, double lift = 0.0, const doub
       for (int i = 0; i < 3; ++i) up[k][i] = um[k][i] = u[k][i];
     up[q / 3][q % 3] += h;
     um[q / 3][q % 3] -= h;
-    const auto plus = elements::contact_face<Surface>(integrand, X, A, up, 5, rp);
-    const auto minus = elements::contact_face<Surface>(integrand, X, A, um, 5, rm);
+    const auto plus = contact::contact_face<Surface>(integrand, X, A, up, 5, rp);
+    const auto minus = contact::contact_face<Surface>(integrand, X, A, um, 5, rm);
     worst_r = std::max(worst_r, std::abs((plus.energy - minus.energy) / (2 * h) - r[q]));
     largest_r = std::max(largest_r, std::abs(r[q]));
     for (int p = 0; p < dofs; ++p) {
@@ -80,7 +80,7 @@ void expect_consistent(const Integrand& integrand, double lift = 0.0, const doub
 TEST(ContactFace, FrictionlessFlatTangents)
 {
   const auto lj = law();
-  elements::FrictionlessIntegrand<laws::FlatSubstrate> integrand{lj, {-lj.equilibrium_gap()}};
+  contact::FrictionlessIntegrand<contact::FlatSubstrate> integrand{lj, {-lj.equilibrium_gap()}};
   expect_consistent<elements::Quad4Surface>(integrand);
   expect_consistent<elements::Quad9Surface>(integrand);
 }
@@ -88,8 +88,8 @@ TEST(ContactFace, FrictionlessFlatTangents)
 TEST(ContactFace, FrictionlessRoughTangentsIncludeCurvature)
 {
   const auto lj = law();
-  laws::RoughSubstrate rough{-lj.equilibrium_gap() - 3.0, 3.0, 4.0, 10.0};   // sharp bumps under a 6 nm face
-  elements::FrictionlessIntegrand<laws::RoughSubstrate> integrand{lj, rough};
+  contact::RoughSubstrate rough{-lj.equilibrium_gap() - 3.0, 3.0, 4.0, 10.0};   // sharp bumps under a 6 nm face
+  contact::FrictionlessIntegrand<contact::RoughSubstrate> integrand{lj, rough};
   expect_consistent<elements::Quad4Surface>(integrand, 0.3);
   expect_consistent<elements::Quad9Surface>(integrand, 0.3);
 }
@@ -97,7 +97,7 @@ TEST(ContactFace, FrictionlessRoughTangentsIncludeCurvature)
 TEST(ContactFace, StictionTangents)
 {
   const auto lj = law();
-  elements::StictionIntegrand integrand{{lj, -lj.equilibrium_gap()}};
+  contact::StictionIntegrand integrand{{lj, -lj.equilibrium_gap()}};
   expect_consistent<elements::Quad4Surface>(integrand);
   expect_consistent<elements::Quad9Surface>(integrand);
 }
@@ -105,7 +105,7 @@ TEST(ContactFace, StictionTangents)
 TEST(ContactFace, StictionTangentsWithMovedAnchors)
 {
   const auto lj = law();
-  elements::StictionIntegrand integrand{{lj, -lj.equilibrium_gap()}};
+  contact::StictionIntegrand integrand{{lj, -lj.equilibrium_gap()}};
   const double shift[3] = {0.3, -0.2, 0.7};   // anchored at a deformed state: travel of a few tenths of a nm
   expect_consistent<elements::Quad4Surface>(integrand, 0.0, shift);
   expect_consistent<elements::Quad9Surface>(integrand, 0.0, shift);
@@ -116,15 +116,15 @@ TEST(ContactFace, StictionTangentsWithMovedAnchors)
 TEST(ContactFace, StictionAnchoredAtTheCurrentStateIsFrictionless)
 {
   const auto lj = law();
-  elements::StictionIntegrand stiction{{lj, -lj.equilibrium_gap()}};
-  elements::FrictionlessIntegrand<laws::FlatSubstrate> frictionless{lj, {-lj.equilibrium_gap()}};
+  contact::StictionIntegrand stiction{{lj, -lj.equilibrium_gap()}};
+  contact::FrictionlessIntegrand<contact::FlatSubstrate> frictionless{lj, {-lj.equilibrium_gap()}};
   double X[9][3], A[9][3], u[9][3], r_stiction[27], r_frictionless[27], r_reference[27];
   face_state<elements::Quad9Surface>(X, u);
   for (int k = 0; k < 9; ++k)
     for (int i = 0; i < 3; ++i) A[k][i] = X[k][i] + u[k][i];
-  const auto anchored = elements::contact_face<elements::Quad9Surface>(stiction, X, A, u, 5, r_stiction);
-  const auto plain = elements::contact_face<elements::Quad9Surface>(frictionless, X, u, 5, r_frictionless);
-  elements::contact_face<elements::Quad9Surface>(stiction, X, u, 5, r_reference);   // anchors at X
+  const auto anchored = contact::contact_face<elements::Quad9Surface>(stiction, X, A, u, 5, r_stiction);
+  const auto plain = contact::contact_face<elements::Quad9Surface>(frictionless, X, u, 5, r_frictionless);
+  contact::contact_face<elements::Quad9Surface>(stiction, X, u, 5, r_reference);   // anchors at X
   ASSERT_GT(plain.active_points, 0);
   EXPECT_NEAR(anchored.energy, plain.energy, 1e-12 * std::abs(plain.energy));
   double largest = 0.0, difference = 0.0;
@@ -139,11 +139,11 @@ TEST(ContactFace, StictionAnchoredAtTheCurrentStateIsFrictionless)
 TEST(ContactFace, UndeformedFaceAtTheEquilibriumGapStoresMinusWorkOfAdhesion)
 {
   const auto lj = law();
-  elements::FrictionlessIntegrand<laws::FlatSubstrate> integrand{lj, {-lj.equilibrium_gap()}};
+  contact::FrictionlessIntegrand<contact::FlatSubstrate> integrand{lj, {-lj.equilibrium_gap()}};
   double X[9][3], u[9][3] = {}, r[27];
   face_state<elements::Quad9Surface>(X, u);
   for (auto& node : u) node[0] = node[1] = node[2] = 0.0;
-  const auto result = elements::contact_face<elements::Quad9Surface>(integrand, X, u, 3, r);
+  const auto result = contact::contact_face<elements::Quad9Surface>(integrand, X, u, 3, r);
   EXPECT_NEAR(result.energy, -lj.work_of_adhesion() * result.area, 1e-14);
   for (double value : r) EXPECT_NEAR(value, 0.0, 1e-14);   // traction-free start
   // The face area (bilinear quadrilateral): shoelace of the corners.

@@ -1,14 +1,14 @@
 // The adhesion laws: Lennard-Jones values against the closed forms of the paper's Sec. 3 (eqs. 16, 22, 23), its
 // derivatives, regularization and cut-off; stiction reducing to the frictionless law; rough-substrate projection
 // against a brute-force search and its curvature terms against finite differences.
-#include "elements/contact_face.hpp"
+#include "contact/contact_face.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 using namespace spatula;
-using laws::LennardJones;
+using contact::LennardJones;
 
 namespace {
 
@@ -118,7 +118,7 @@ TEST(Stiction, ZeroTangentialTravelIsTheFrictionlessLaw)
 {
   auto law = base_law();
   law.r_reg = 0.8 * law.equilibrium_gap();
-  const laws::StictionLaw stiction{law, -law.equilibrium_gap()};
+  const contact::StictionLaw stiction{law, -law.equilibrium_gap()};
   for (double gap : {-0.05, 0.1, 0.2, 0.2547, 0.28, 0.306, 0.5, 2.0}) {
     const double X[3] = {12.0, -3.0, 0.0};
     const double x[3] = {12.0, -3.0, gap - law.equilibrium_gap()};   // straight above the anchor
@@ -136,7 +136,7 @@ TEST(Stiction, ZeroTangentialTravelIsTheFrictionlessLaw)
 TEST(Stiction, TangentialTravelIsResistedAndDerivativesMatch)
 {
   const auto law = base_law();
-  const laws::StictionLaw stiction{law, -law.equilibrium_gap()};
+  const contact::StictionLaw stiction{law, -law.equilibrium_gap()};
   const double X[3] = {5.0, 2.0, 0.0};
   const double x[3] = {5.12, 1.95, 0.04 - 0.0};   // slid by 0.13 nm, slightly lifted
   double phi, gradient[3], H[3][3];
@@ -156,10 +156,10 @@ TEST(Stiction, TangentialTravelIsResistedAndDerivativesMatch)
 
 TEST(RoughSubstrate, ProjectionMatchesBruteForceSearch)
 {
-  laws::RoughSubstrate rough{-5.0, 8.0, 20.0, 100.0};
+  contact::RoughSubstrate rough{-5.0, 8.0, 20.0, 100.0};
   for (const auto& x : {std::array<double, 3>{10.0, 5.0, 3.5}, std::array<double, 3>{37.0, -22.0, -2.0},
                         std::array<double, 3>{50.0, 86.6, 4.0}, std::array<double, 3>{-15.0, 40.0, -4.5}}) {
-    laws::SurfacePoint p;
+    contact::SurfacePoint p;
     ASSERT_TRUE(rough.project(x.data(), p));
     double best = 1e30, S, g[2], H[2][2];
     for (int i = -200; i <= 200; ++i)
@@ -183,16 +183,16 @@ TEST(RoughSubstrate, ProjectionMatchesBruteForceSearch)
 
 TEST(RoughSubstrate, NormalAndCurvatureAreDerivativesOfTheDistance)
 {
-  laws::RoughSubstrate rough{-5.0, 8.0, 20.0, 100.0};
+  contact::RoughSubstrate rough{-5.0, 8.0, 20.0, 100.0};
   const double x[3] = {14.0, 7.0, 2.6};
-  laws::SurfacePoint p;
+  contact::SurfacePoint p;
   ASSERT_TRUE(rough.project(x, p));
   const double h = 1e-6;
   for (int j = 0; j < 3; ++j) {
     double xp[3] = {x[0], x[1], x[2]}, xm[3] = {x[0], x[1], x[2]};
     xp[j] += h;
     xm[j] -= h;
-    laws::SurfacePoint pp, pm;
+    contact::SurfacePoint pp, pm;
     rough.project(xp, pp);
     rough.project(xm, pm);
     EXPECT_NEAR((pp.distance - pm.distance) / (2 * h), p.normal[j], 1e-7);

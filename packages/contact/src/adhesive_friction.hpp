@@ -18,13 +18,13 @@
 // (C1 and C2 continuous: a hard cut would make the residual jump).
 // The consistent tangent: d t / d s (2 x 2) and d t / d g (2: the normal-tangential coupling, zero in stick); the
 // normal traction does not depend on s, so the point's tangent is not symmetric in slip.
-#include "laws/lennard_jones.hpp"
+#include "contact/lennard_jones.hpp"
 
 #include <Kokkos_Core.hpp>
 
 #include <cmath>
 
-namespace spatula::laws {
+namespace spatula::contact {
 
 struct FrictionHistory {
   double anchor[2] = {0.0, 0.0};   // where the tangential spring is relaxed [nm]
@@ -118,4 +118,4 @@ struct AdhesiveFriction {
   }
 };
 
-}  // namespace spatula::laws
+}  // namespace spatula::contact

@@ -19,7 +19,7 @@
 
 #include <cmath>
 
-namespace spatula::laws {
+namespace spatula::contact {
 
 struct LennardJones {
   double hamaker = 0.1;   // A_H [nN nm] (1e-19 J)
@@ -82,4 +82,4 @@ struct LennardJones {
   }
 };
 
-}  // namespace spatula::laws
+}  // namespace spatula::contact

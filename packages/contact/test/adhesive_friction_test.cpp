@@ -3,14 +3,14 @@
 // values (extended Amontons zero at the strongest attraction, mu (T_n + t_max) elsewhere; off beyond the cut-off);
 // the consistent tangent d t / d s and d t / d g against finite differences of the return mapping, in stick and in
 // slip; and Newton on one point driven to a sliding state converging quadratically.
-#include "laws/adhesive_friction.hpp"
+#include "contact/adhesive_friction.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-using spatula::laws::AdhesiveFriction;
-using spatula::laws::FrictionHistory;
+using spatula::contact::AdhesiveFriction;
+using spatula::contact::FrictionHistory;
 
 namespace {
 

@@ -6,13 +6,12 @@
 //   rough: z = base + sum_k z0 exp(-|p - c_k|^2 / h^2) over a triangular lattice c_k of spacing lambda (paper
 //          eq. 28); d by closest-point projection (Newton on the surface parameters), n = (-grad S, 1)/|.|,
 //          grad n = dn/dxi dxi/dx with dxi/dx from the implicit projection condition.
-#include "laws/small_matrix.hpp"
 
 #include <Kokkos_Core.hpp>
 
 #include <cmath>
 
-namespace spatula::laws {
+namespace spatula::contact {
 
 struct SurfacePoint {
   double distance = 0.0;
@@ -130,4 +129,4 @@ struct RoughSubstrate {
   }
 };
 
-}  // namespace spatula::laws
+}  // namespace spatula::contact

@@ -10,9 +10,9 @@
 //
 // With r_a = 0 (r_k = r_s) this is phi_LJ(r_s) for every r_s: the frictionless law. Both parts are C1 at r_eq
 // (phi_LJ'(r_eq) = 0).
-#include "laws/lennard_jones.hpp"
+#include "contact/lennard_jones.hpp"
 
-namespace spatula::laws {
+namespace spatula::contact {
 
 struct StictionLaw {
   LennardJones law;
@@ -62,4 +62,4 @@ struct StictionLaw {
   }
 };
 
-}  // namespace spatula::laws
+}  // namespace spatula::contact

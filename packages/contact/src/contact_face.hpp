@@ -9,23 +9,23 @@
 // template parameter: evaluate(A, x, phi, dphi/dx, d2phi/dx2 or nullptr) -> within the cut-off?, with A = sum_k N_k A_k
 // the point's anchor: where the stiction law measures tangential travel from (the frictionless law ignores it). The
 // anchors A_k are the reference positions X_k unless a run re-anchors them at a deformed state.
+#include "contact/lennard_jones.hpp"
+#include "contact/stiction.hpp"
+#include "contact/substrate.hpp"
 #include "elements/gauss_rule.hpp"
-#include "laws/lennard_jones.hpp"
 #include "elements/quadrilateral_shape.hpp"
-#include "laws/stiction.hpp"
-#include "laws/substrate.hpp"
 
 #include <type_traits>
 
-namespace spatula::elements {
+namespace spatula::contact {
 
 // The frictionless law over any substrate: phi(d(x)), grad = phi' n, Hessian = phi'' n n + phi' grad n (the last
 // term only where the substrate is curved).
 template <class Substrate>
 struct FrictionlessIntegrand {
-  laws::LennardJones law;
+  contact::LennardJones law;
   Substrate substrate;
-  static constexpr bool curved = !std::is_same<Substrate, laws::FlatSubstrate>::value;
+  static constexpr bool curved = !std::is_same<Substrate, contact::FlatSubstrate>::value;
 
   KOKKOS_INLINE_FUNCTION double far_bound(const double x[3]) const { return substrate.distance_bound(x); }
   KOKKOS_INLINE_FUNCTION double cut_off() const { return law.r_cut; }
@@ -43,7 +43,7 @@ struct FrictionlessIntegrand {
       }
       return false;
     }
-    laws::SurfacePoint p;
+    contact::SurfacePoint p;
     substrate.project(x, p);
     double d1, d2;
     const bool active = law.evaluate(p.distance, phi, d1, d2);
@@ -58,7 +58,7 @@ struct FrictionlessIntegrand {
 
 // Stiction on a flat substrate (laws/stiction.hpp).
 struct StictionIntegrand {
-  laws::StictionLaw law;
+  contact::StictionLaw law;
   KOKKOS_INLINE_FUNCTION double far_bound(const double x[3]) const { return x[2] - law.substrate_height; }
   KOKKOS_INLINE_FUNCTION double cut_off() const { return law.law.r_cut; }
   KOKKOS_INLINE_FUNCTION bool evaluate(const double anchor[3], const double x[3], double& phi, double gradient[3],
@@ -92,8 +92,8 @@ KOKKOS_INLINE_FUNCTION ContactFaceResult contact_face(const Integrand& integrand
   for (int a = 0; a < order; ++a)
     for (int b = 0; b < order; ++b) {
       double s, t, ws, wt, shape[N], dshape[N][2];
-      gauss_point(order, a, s, ws);
-      gauss_point(order, b, t, wt);
+      elements::gauss_point(order, a, s, ws);
+      elements::gauss_point(order, b, t, wt);
       Surface::evaluate(s, t, shape, dshape);
       double Aq[3] = {0, 0, 0}, xq[3] = {0, 0, 0}, Xs[3] = {0, 0, 0}, Xt[3] = {0, 0, 0};
       for (int k = 0; k < N; ++k)
@@ -135,4 +135,4 @@ KOKKOS_INLINE_FUNCTION ContactFaceResult contact_face(const Integrand& integrand
   return contact_face<Surface>(integrand, X, X, u, order, r, K);
 }
 
-}  // namespace spatula::elements
+}  // namespace spatula::contact

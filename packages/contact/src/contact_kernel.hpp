@@ -1,0 +1,112 @@
+#pragma once
+// The contact faces' device kernel: one face per work item of a Kokkos parallel_reduce, integrated by
+// contact_face.hpp with a law x substrate integrand and scattered into the global system; faces whose every point is
+// beyond the cut-off are skipped. IntegrandContactModel<Integrand> is the discretization::ContactModel for any such
+// integrand (the registry, contact_registry.cpp, makes one per law and substrate).
+#include "contact/contact_face.hpp"
+#include "discretization/contact_model.hpp"
+
+#include <string>
+
+namespace spatula::contact {
+
+using discretization::ContactFaceViews;
+using discretization::ContactTotals;
+using discretization::ElementScatter;
+using discretization::execution_space;
+
+namespace detail {
+
+// One face per work item; sums[0] energy, sums[1] integrated faces, sums[2] active points. An array sum: Kokkos'
+// own init (zeros) and join (+=) serve, so the kernel declares neither (Kokkos 4 rejects the volatile join that
+// Kokkos 3 asked for).
+template <class Surface, class Integrand>
+struct ContactKernel {
+  using value_type = double[];
+  unsigned value_count = 3;
+  ElementScatter scatter;
+  ContactFaceViews faces;
+  Integrand integrand;
+  int order = 4;
+  bool skip_distant = true;
+
+  KOKKOS_INLINE_FUNCTION void operator()(const int face, value_type sums) const
+  {
+    constexpr int n = Surface::nodes;
+    int nodes[n];
+    double X[n][3], A[n][3], u[n][3];
+    double nearest = 1e300, farthest = -1e300;
+    for (int k = 0; k < n; ++k) {
+      nodes[k] = faces.nodes(face, k);
+      scatter.displacement(nodes[k], u[k]);
+      double x[3];
+      for (int i = 0; i < 3; ++i) {
+        X[k][i] = faces.coordinates(nodes[k], i);
+        A[k][i] = faces.anchors(nodes[k], i);
+        x[i] = X[k][i] + u[k][i];
+      }
+      const double bound = integrand.far_bound(x);
+      nearest = bound < nearest ? bound : nearest;
+      farthest = bound > farthest ? bound : farthest;
+    }
+    // Skip a face whose every point is beyond the cut-off (with a margin for the quadratic interpolation).
+    if (skip_distant && nearest - 0.5 * (farthest - nearest) > integrand.cut_off()) {
+      double phi, gradient[3];
+      double x_far[3] = {0.0, 0.0, 1e300};
+      integrand.evaluate(A[0], x_far, phi, gradient, nullptr);
+      sums[0] += phi * faces.areas(face);
+      return;
+    }
+    double r[3 * n], K[3 * n][3 * n];
+    const auto result = contact_face<Surface>(integrand, X, A, u, order, r,
+                                                               scatter.with_matrix ? K : nullptr);
+    sums[0] += result.energy;
+    sums[1] += 1.0;
+    sums[2] += result.active_points;
+    if (result.active_points > 0) scatter.add<n>(nodes, r, K);
+  }
+};
+
+}  // namespace detail
+
+template <class Integrand>
+class IntegrandContactModel : public discretization::ContactModel {
+public:
+  IntegrandContactModel(Integrand integrand, int order, std::string description, double work_of_adhesion,
+                        bool skip_distant_faces = true)
+      : integrand_(integrand), order_(order), description_(std::move(description)), work_(work_of_adhesion),
+        skip_distant_(skip_distant_faces)
+  {
+  }
+  std::string description() const override { return description_; }
+  double work_of_adhesion() const override { return work_; }
+  int quadrature_order() const override { return order_; }
+
+  ContactTotals assemble(const ContactFaceViews& faces, const ElementScatter& scatter) const override
+  {
+    double sums[3] = {0.0, 0.0, 0.0};
+    const auto policy = Kokkos::RangePolicy<execution_space>(0, faces.count);
+    if (faces.face_nodes == 9) {
+      detail::ContactKernel<elements::Quad9Surface, Integrand> kernel{3, scatter, faces, integrand_, order_, skip_distant_};
+      Kokkos::parallel_reduce("spatula: contact Q1C2 faces", policy, kernel, sums);
+    } else {
+      detail::ContactKernel<elements::Quad4Surface, Integrand> kernel{3, scatter, faces, integrand_, order_, skip_distant_};
+      Kokkos::parallel_reduce("spatula: contact Q1C1 faces", policy, kernel, sums);
+    }
+    ContactTotals totals;
+    totals.energy = sums[0];
+    totals.active_faces = static_cast<int>(sums[1]);
+    totals.skipped_faces = faces.count - totals.active_faces;
+    totals.active_points = static_cast<int>(sums[2]);
+    return totals;
+  }
+
+private:
+  Integrand integrand_;
+  int order_;
+  std::string description_;
+  double work_;
+  bool skip_distant_;
+};
+
+}  // namespace spatula::contact
