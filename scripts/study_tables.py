@@ -13,14 +13,26 @@ STICTION_RUNS = (('pull-off-60', 'frictionless', False),
                  ('pull-off-60-stiction-x-held', 'stiction, end face held in X', False))
 
 
-# The paper's values this project may use (its Tables 4, 5 and 6 and Pi_c0 of Sec. 3; docs/validation.md); the rest
-# are held out.
-PAPER_TABLE4 = {30: (0.237, 0.222, 0.013), '31-': (0.255, 0.232, 0.021), '31+': (0.255, 0.182, 0.071),
-                60: (0.689, 0.395, 0.291), 90: (1.088, 0.545, 0.540), 120: (1.455, 0.728, 0.724),
-                128: (1.551, 0.738, 0.811)}
-PAPER_TABLE6 = {45: (7.63, 248, 1097), 60: (6.67, 185, 701), 75: (5.59, 125, 422), 90: (4.40, 80, 235)}
-PAPER_TABLE5_START = {45: 0.463, 60: 0.689, 75: 0.897, 90: 1.088}
-PAPER_PI_C0 = 759.3   # E R0^3, the paper's exact-law contact energy of the undeformed spatula (its area)
+def paper_values():
+    """The paper's values this project may use, from scripts/paper-values.csv (its Tables 4, 5 and 6 and Pi_c0 of
+    Sec. 3; the rest are held out): (Table 4, Table 6, Table 5's Pi_ext,0, Pi_c0), the tables keyed by theta_y (an
+    int, or a label such as '31-')."""
+    tables = {'table4': {}, 'table5': {}, 'table6': {}}
+    pi_c0 = None
+    with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), 'paper-values.csv')) as values:
+        for line in values:
+            if line.startswith('#') or not line.strip():
+                continue
+            table, key, *numbers = line.strip().split(',')
+            numbers = tuple(int(n) if n.isdigit() else float(n) for n in numbers)
+            if table == 'pi_c0':
+                pi_c0 = numbers[0]
+            else:
+                tables[table][int(key) if key.isdigit() else key] = numbers if len(numbers) > 1 else numbers[0]
+    return tables['table4'], tables['table6'], tables['table5'], pi_c0
+
+
+PAPER_TABLE4, PAPER_TABLE6, PAPER_TABLE5_START, PAPER_PI_C0 = paper_values()
 
 
 def rotation_curve(work):
