@@ -54,8 +54,8 @@ struct LinearSolverParameters {
   int maximum_iterations = 500; // Krylov iterations (gmres-ilu, gmres-amg)
   int fill_level = 1;           // ILU(k) level of fill (gmres-ilu)
   MumpsParameters mumps;
-  // With refactor = lag: tangents a MUMPS factorization may serve as preconditioner (0: refactor always). 4: measured
-  // 12 % less CPU than 0 on the coarse pull-off at 60 deg with P_max within 0.04 % (docs/error-vs-time.md).
+  // With refactor = lag: tangents a MUMPS factorization may serve as preconditioner (0: refactor always; what 4 saves
+  // against 0: docs/error-vs-time.md).
   int lag = 4;
   int lag_applications = 8;     // refactor once a tangent's solves needed more applications than this
   RefactorRule refactor = RefactorRule::cost;   // lag: the two limits above; cost: modelled work; clock: seconds

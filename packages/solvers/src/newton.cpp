@@ -47,10 +47,8 @@ void NewtonParameters::declare(Teuchos::ParameterList& list)
   parameters::declare_double(list, "relative tolerance", d.relative_tolerance,
                              "|f| relative to its value at the step start",
                              {0.0, 1.0, false, true});
-  // 1e-5 (1e-9, then 1e-6): each step saved the last Newton iteration, which took |f| ~ 1e-5 nN (then ~1e-4) to far
-  // below what any reported digit depends on. 1e-9 -> 1e-6: coarse pull-off at 45 deg 1,113 -> 971 tangents, P_max,
-  // Delta u_z and Delta Pi_ext within 0.005 % (benchmarks/step_control.py); 1e-6 -> 1e-5: the medium peel front
-  // (60 nm of lift from 45 deg) 99 -> 89 tangents with the energy line search, the end state within 1e-5.
+  // The default saves the last Newton iteration of most steps, which would take |f| far below what any reported
+  // digit depends on (what a tighter value costs: docs/solvers.md).
   parameters::declare_double(list, "absolute tolerance", d.absolute_tolerance,
                              "|f|_2 [nN] (over sqrt(n) with norms = scaled)",
                              Range::non_negative());
@@ -64,17 +62,14 @@ void NewtonParameters::declare(Teuchos::ParameterList& list)
                           "iterations an attempt at 'maximum iterations' may go on while each of its last two "
                           "iterations cut |f| to 'contraction' or less (0: fail at the limit)",
                           Range::closed(0, 500));
-  // energy (was backtrack): at the medium peel front Newton's steps fall short along their line (the energy's
-  // slope keeps 25-35 % of its value at the step's end) and backtracking on |f| halves some of them; the medium
-  // peel front (60 nm of lift from 45 deg) 120 -> 99 tangents, coarse pull-off at 45 deg 906 -> 873, results within
-  // 0.004 %.
+  // energy by default: at the peel front Newton's steps fall short along their line (the energy's slope keeps a
+  // quarter to a third of its value at the step's end), and backtracking on |f| would halve some of them.
   parameters::declare_string(list, "line search", parameters::name_of(d.line_search, line_search_names()),
                              "step length control: backtrack or polynomial (cut the step until |f| falls), full step, "
                              "or energy (the zero of the energy's slope along Newton's direction, steps up to 4: "
                              "backtrack where the direction does not lower the energy)", line_search_names());
-  // 2 x 0.5, applied only after a failed step ('give up'): on the coarse pull-off at 45 deg 1,827 -> 1,226 tangents,
-  // CPU 0.65, results within 0.005 % (benchmarks/step_control.py). Applied in every attempt it saved as much there
-  // but cost 1.4 x the CPU on the smooth medium scene xml/pull-off-medium.xml, which has no failed step.
+  // 2 x 0.5, applied only after a failed step ('give up'): near a fold most retries are hopeless, while on a smooth
+  // path a first attempt that shrinks |f| slowly for a few iterations still converges (docs/solvers.md).
   parameters::declare_int(list, "non-contracting iterations", d.non_contracting_iterations,
                           "give up on a load step after this many consecutive iterations that did not shrink |f| "
                           "below 'contraction' times its value before while |f| was above 1e-3 of its first value (0: "
