@@ -25,7 +25,7 @@ its scene with all defaults filled in to `<directory>/scene.xml`. What the lists
 LIST = re.compile(r'^( *)(\S.*?) -> $')
 KEY = re.compile(r'^( *)(\S.*?) : (\w+) = (.*)$')
 DOC = re.compile(r'^( *)# (.*)$')
-RANGE = re.compile(r'^(.*) \(((?:double|int) in [\[(].*[\])]|one of: .*|true or false|string.*?)\)$')
+RANGE = re.compile(r'^(.*) \(((?:double|int) in [\[(].*[\])]|one of: .*|true or false|any string)\)$')
 
 
 def parse(text):

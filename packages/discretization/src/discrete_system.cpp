@@ -10,7 +10,6 @@
 #include <Teuchos_TimeMonitor.hpp>
 
 #include <algorithm>
-#include <map>
 #include <stdexcept>
 #include <string>
 
@@ -132,9 +131,7 @@ struct DiscreteSystem::Implementation : SystemTopology {
                      const DeviceView<std::int64_t*>& ids, const DeviceView<std::int64_t[1]>& inverted)
   {
     double energy = 0.0;
-    const int order = Shape::nodes == 13 ? std::max(solid.quadrature_order, 3) : solid.quadrature_order;
-    SolidKernel<Shape> kernel{scatter, nodes, ids, coordinates, inverted,
-                              laws::NeoHookean::from_young(solid.young, solid.poisson), order};
+    SolidKernel<Shape> kernel{scatter, nodes, ids, coordinates, inverted, solid.law(), solid.order(Shape::nodes)};
     Kokkos::parallel_reduce(label, Kokkos::RangePolicy<execution_space>(0, static_cast<int>(nodes.extent(0))),
                             kernel, energy);
     return energy;

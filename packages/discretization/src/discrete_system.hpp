@@ -17,6 +17,7 @@
 #include <Teuchos_Comm.hpp>
 #include <Teuchos_ParameterList.hpp>
 
+#include <algorithm>
 #include <array>
 #include <initializer_list>
 #include <memory>
@@ -30,6 +31,11 @@ struct SolidParameters {
   double young = 2.0;     // E [GPa] = [nN / nm^2]
   double poisson = 0.2;   // nu
   int quadrature_order = 2;   // Gauss points per direction in each hexahedron
+
+  // The material's law, and the Gauss order of an element with that many nodes (a Q1C2 Hex13 takes at least 3: its
+  // quadratic face).
+  laws::NeoHookean law() const { return laws::NeoHookean::from_young(young, poisson); }
+  int order(int element_nodes) const { return element_nodes == 13 ? std::max(quadrature_order, 3) : quadrature_order; }
 
   static void declare(Teuchos::ParameterList& material);
   static SolidParameters from(const Teuchos::ParameterList& material);

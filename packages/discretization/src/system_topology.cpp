@@ -50,10 +50,10 @@ DeviceView<T*> to_device(const std::string& label, const std::vector<T>& values)
 }  // namespace
 
 SystemTopology::SystemTopology(const mesh::HexMesh& mesh_, const mesh::Partition& partition,
-                             const Constraints& constraints, Enrichment enrichment, bool with_contact,
-                             Teuchos::RCP<const Teuchos::Comm<int>> comm_)
-  : comm(std::move(comm_)), mesh(mesh_), space(make_node_space(mesh_, partition, enrichment)),
-    layout(make_dof_layout(space, constraints, partition.ranks)), face_centre(constraints.rigid_centre)
+                               const Constraints& constraints, Enrichment enrichment, bool with_contact,
+                               Teuchos::RCP<const Teuchos::Comm<int>> comm_)
+    : comm(std::move(comm_)), mesh(mesh_), space(make_node_space(mesh_, partition, enrichment)),
+      layout(make_dof_layout(space, constraints, partition.ranks)), face_centre(constraints.rigid_centre)
 {
   for (int i = 0; i < 3; ++i) {
     directions.lift[i] = constraints.lift_direction[i];
