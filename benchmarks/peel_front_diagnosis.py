@@ -2,7 +2,8 @@
 """Why Newton needs many iterations at the moving peel front: counts, not timings (a busy machine changes nothing).
 
 Runs, with 'Output/tangent spectrum' (the tangent's eigenvalue nearest zero at every converged state, by inverse
-iteration on its LDL^T factors, and the participation ratio of its mode) and 'Output/convergence tables' on:
+iteration on its LDL^T factors, and the participation ratio of its mode), 'Output/convergence tables' and
+'Nonlinear Solver/front diagnosis' on:
   medium-rotation-45-54   the medium study rotation (docs/study-runs/medium/peel-rotation) restarted from its 45 deg
                           checkpoint to 54 deg with rotation steps of at most 0.9 deg (the smooth peel);
   coarse-rotation-to-40   the default scene (coarse) to 40 deg, through its first snaps.
@@ -13,7 +14,10 @@ its progress), and the two uses of 'Nonlinear Solver/Front Elimination'. For eac
 (converged and failed attempts, the front elimination's local ones included), the histogram of Newton iterations per
 state, the nearest eigenvalue's range (nN/nm and over the tangent's mean diagonal) and its mode's participation, and
 the Newton iterations whose line search cut the step below 1 (with the slope ratio at the end of such steps: near 1
-means the energy still fell steeply there). Writes docs/peel-front-diagnosis.csv and prints the table for
+means the energy still fell steeply there), and from the diagnosis under each row of the convergence table the
+contact points each full Newton step carries across the law's inflection (median, largest, their spread in X), the
+full steps along which the energy rises over a barrier, and those of them whose energy would rise even without the
+crossing points' adhesion energy. Writes docs/peel-front-diagnosis.csv and prints the table for
 docs/performance.md.
 
 usage: benchmarks/peel_front_diagnosis.py [--work DIR] [--only CASE] [--variant NAME]   (about 9 minutes; needs a build)
@@ -44,6 +48,7 @@ def set_parameter(root, key, value, kind):
 
 
 DIAGNOSIS = [('Output/tangent spectrum', 10, 'int'), ('Output/convergence tables', 'true', 'bool'),
+             ('Nonlinear Solver/front diagnosis', 'true', 'bool'),
              ('Output/write mesh', 'false', 'bool'), ('Output/field interval', 0, 'int')]
 CASES = {
     'medium-rotation-45-54': (os.path.join(ROTATION, 'scene.xml'), [
@@ -53,6 +58,25 @@ CASES = {
     'coarse-rotation-to-40': (os.path.join(ROOT, 'xml', 'default.xml'), [('Loading/theta_y', 40.0, 'double')]),
 }
 ROW = re.compile(r'^ +(\d+) +([0-9.e+-]+) +([0-9.e+-]+) +([0-9.e+-]+) +(-?\d+) +([0-9.e+-]+) +([0-9.e+-]+)$')
+# The diagnosis of each iteration's full step, on the line under its row (solvers/front_diagnosis.hpp).
+FULL_STEP = re.compile(r'full step: (\d+) contact points cross the law.s inflection(?: \(at X = ([0-9.-]+) \+- '
+                       r'([0-9.]+), Y = [0-9.-]+ \+- [0-9.]+ nm\))?; Pi - Pi_0 at t = 0.25: (\S+), 0.5: (\S+), '
+                       r'0.75: (\S+), 1: (\S+) nN nm, of which their Pi_c (\S+), (\S+), (\S+), (\S+);')
+
+
+def full_steps(lines):
+    """Per iteration: (line-search step, crossing points, X spread, energy along the full step rises, ... without
+    the crossing points' adhesion)."""
+    steps = []
+    for row, below in zip(lines, lines[1:]):
+        m, d = ROW.match(row), FULL_STEP.search(below)
+        if not (m and d):
+            continue
+        total = [float(d.group(k)) for k in range(4, 8)]
+        rest = [t - float(d.group(k + 4)) for k, t in zip(range(4, 8), total)]
+        rises = lambda values: any(b > a for a, b in zip(values, values[1:]))
+        steps.append((float(m.group(4)), int(d.group(1)), float(d.group(3) or 0.0), rises(total), rises(rest)))
+    return steps
 
 
 # Solver variants: (name, keep the recorded scene's solver lists, settings).
@@ -104,6 +128,8 @@ def summarize(case, log, spectrum):
     rows = [m.groups() for m in (ROW.match(line) for line in lines) if m]
     tangents = next(int(m.group(1)) for m in (re.match(r'^solver: (\d+) tangents', line) for line in lines) if m)
     cut = [r for r in rows if float(r[3]) < 1.0]
+    diagnosed = full_steps(lines)
+    crossing = sorted(d[1] for d in diagnosed)
     failed = sum(1 for line in lines if 'failed (no convergence' in line)
     states = list(csv.DictReader(open(spectrum)))
     iterations = [int(s['newton_iterations']) for s in states]
@@ -116,6 +142,13 @@ def summarize(case, log, spectrum):
         'iterations_in_converged_states': sum(iterations), 'failed_attempts': failed,
         'line_search_cuts': len(cut),
         'cut_slope_ratio_median': round(sorted(float(r[6]) for r in cut)[len(cut) // 2], 3) if cut else '',
+        # the limiting points: crossing the law's inflection under the full step, and whether they alone raise the
+        # energy along it (it rises with them, falls monotonically without their adhesion energy)
+        'crossing_points_median': crossing[len(crossing) // 2] if crossing else '',
+        'crossing_points_max': crossing[-1] if crossing else '',
+        'crossing_x_spread_median_nm': sorted(d[2] for d in diagnosed)[len(diagnosed) // 2] if diagnosed else '',
+        'full_steps_over_a_barrier': sum(1 for d in diagnosed if d[3]),
+        'barriers_without_the_crossing_points': sum(1 for d in diagnosed if d[3] and d[4]),
         'nearest_eigenvalue_min': f'{min(value):.3e}', 'nearest_eigenvalue_max': f'{max(value):.3e}',
         'nearest_over_diagonal_min': f'{min(relative):.2e}', 'nearest_over_diagonal_max': f'{max(relative):.2e}',
         'participation_min': round(min(participation), 3), 'participation_max': round(max(participation), 3),

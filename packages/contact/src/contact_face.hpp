@@ -29,6 +29,16 @@ struct FrictionlessIntegrand {
 
   KOKKOS_INLINE_FUNCTION double far_bound(const double x[3]) const { return substrate.distance_bound(x); }
   KOKKOS_INLINE_FUNCTION double cut_off() const { return law.r_cut; }
+  // The gap at x (beyond the cut-off, a lower bound of it), the law's inflection (strongest attraction) and r0.
+  KOKKOS_INLINE_FUNCTION double gap(const double x[3]) const
+  {
+    if (substrate.distance_bound(x) > law.r_cut) return substrate.distance_bound(x);
+    contact::SurfacePoint p;
+    substrate.project(x, p);
+    return p.distance;
+  }
+  KOKKOS_INLINE_FUNCTION double inflection() const { return law.strongest_attraction_gap(); }
+  KOKKOS_INLINE_FUNCTION double range() const { return law.r0; }
 
   KOKKOS_INLINE_FUNCTION bool evaluate(const double[3], const double x[3], double& phi, double gradient[3],
                                        double (*H)[3]) const
@@ -61,6 +71,9 @@ struct StictionIntegrand {
   contact::StictionLaw law;
   KOKKOS_INLINE_FUNCTION double far_bound(const double x[3]) const { return x[2] - law.substrate_height; }
   KOKKOS_INLINE_FUNCTION double cut_off() const { return law.law.r_cut; }
+  KOKKOS_INLINE_FUNCTION double gap(const double x[3]) const { return x[2] - law.substrate_height; }
+  KOKKOS_INLINE_FUNCTION double inflection() const { return law.law.strongest_attraction_gap(); }
+  KOKKOS_INLINE_FUNCTION double range() const { return law.law.r0; }
   KOKKOS_INLINE_FUNCTION bool evaluate(const double anchor[3], const double x[3], double& phi, double gradient[3],
                                        double (*H)[3]) const
   {
@@ -72,6 +85,43 @@ struct ContactFaceResult {
   double energy = 0.0;
   double area = 0.0;       // undeformed area of the face
   int active_points = 0;   // quadrature points within the cut-off
+};
+
+// Quadrature point (a, b) of a face's order x order Gauss rule: its shape functions, reference position X, anchor A
+// and undeformed area element dA, and its current position for nodal displacements u.
+template <class Surface>
+struct FacePoint {
+  double shape[Surface::nodes];
+  double X[3] = {0, 0, 0}, A[3] = {0, 0, 0};
+  double dA = 0.0;
+
+  KOKKOS_INLINE_FUNCTION FacePoint(int order, int a, int b, const double Xn[Surface::nodes][3],
+                                   const double An[Surface::nodes][3])
+  {
+    double s, t, ws, wt, dshape[Surface::nodes][2];
+    elements::gauss_point(order, a, s, ws);
+    elements::gauss_point(order, b, t, wt);
+    Surface::evaluate(s, t, shape, dshape);
+    double Xs[3] = {0, 0, 0}, Xt[3] = {0, 0, 0};
+    for (int k = 0; k < Surface::nodes; ++k)
+      for (int i = 0; i < 3; ++i) {
+        X[i] += shape[k] * Xn[k][i];
+        A[i] += shape[k] * An[k][i];
+        Xs[i] += dshape[k][0] * Xn[k][i];
+        Xt[i] += dshape[k][1] * Xn[k][i];
+      }
+    const double normal[3] = {Xs[1] * Xt[2] - Xs[2] * Xt[1], Xs[2] * Xt[0] - Xs[0] * Xt[2],
+                              Xs[0] * Xt[1] - Xs[1] * Xt[0]};
+    dA = ::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]) * ws * wt;
+  }
+  // (Xn: the nodes' reference positions the point was made with.)
+  KOKKOS_INLINE_FUNCTION void position(const double Xn[Surface::nodes][3], const double u[Surface::nodes][3],
+                                       double x[3]) const
+  {
+    for (int i = 0; i < 3; ++i) x[i] = 0.0;
+    for (int k = 0; k < Surface::nodes; ++k)
+      for (int i = 0; i < 3; ++i) x[i] += shape[k] * (Xn[k][i] + u[k][i]);
+  }
 };
 
 // One contact face with nodal anchors A: energy, residual r[3N] and (if K) tangent K[3N][3N].
@@ -91,23 +141,13 @@ KOKKOS_INLINE_FUNCTION ContactFaceResult contact_face(const Integrand& integrand
   }
   for (int a = 0; a < order; ++a)
     for (int b = 0; b < order; ++b) {
-      double s, t, ws, wt, shape[N], dshape[N][2];
-      elements::gauss_point(order, a, s, ws);
-      elements::gauss_point(order, b, t, wt);
-      Surface::evaluate(s, t, shape, dshape);
-      double Aq[3] = {0, 0, 0}, xq[3] = {0, 0, 0}, Xs[3] = {0, 0, 0}, Xt[3] = {0, 0, 0};
-      for (int k = 0; k < N; ++k)
-        for (int i = 0; i < 3; ++i) {
-          Aq[i] += shape[k] * A[k][i];
-          xq[i] += shape[k] * (X[k][i] + u[k][i]);
-          Xs[i] += dshape[k][0] * X[k][i];
-          Xt[i] += dshape[k][1] * X[k][i];
-        }
-      const double normal[3] = {Xs[1] * Xt[2] - Xs[2] * Xt[1], Xs[2] * Xt[0] - Xs[0] * Xt[2],
-                                Xs[0] * Xt[1] - Xs[1] * Xt[0]};
-      const double dA = ::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]) * ws * wt;
+      const FacePoint<Surface> point(order, a, b, X, A);
+      const auto& shape = point.shape;
+      const double dA = point.dA;
+      double xq[3];
+      point.position(X, u, xq);
       double phi, gradient[3], H[3][3];
-      const bool active = integrand.evaluate(Aq, xq, phi, gradient, K ? H : nullptr);
+      const bool active = integrand.evaluate(point.A, xq, phi, gradient, K ? H : nullptr);
       result.energy += phi * dA;
       result.area += dA;
       if (!active) continue;
@@ -123,6 +163,48 @@ KOKKOS_INLINE_FUNCTION ContactFaceResult contact_face(const Integrand& integrand
           }
     }
   return result;
+}
+
+// The quadrature points of one face whose gap under a displacement change u_from -> u_to crosses the law's inflection
+// (the strongest attraction, where the law's stiffness changes sign): the limiting points of a Newton step at the
+// peel front. Adds to sums[0..9]: their count, the count of points whose gap changes by more than `large` (nm), the
+// crossing points' reference X, Y, X^2 and Y^2, and their share of the adhesion energy's change along the step,
+// sum phi(x(t)) dA - phi(x(0)) dA at t = 0.25, 0.5, 0.75, 1 (x(t) = x_from + t (x_to - x_from)). Points beyond the
+// cut-off at both ends are not looked at.
+constexpr int gap_change_sums = 10;
+template <class Surface, class Integrand>
+KOKKOS_INLINE_FUNCTION void face_gap_changes(const Integrand& integrand, const double X[Surface::nodes][3],
+                                             const double A[Surface::nodes][3],
+                                             const double u_from[Surface::nodes][3],
+                                             const double u_to[Surface::nodes][3], int order, double large,
+                                             double sums[gap_change_sums])
+{
+  const double inflection = integrand.inflection();
+  for (int a = 0; a < order; ++a)
+    for (int b = 0; b < order; ++b) {
+      const FacePoint<Surface> point(order, a, b, X, A);
+      double from[3], to[3];
+      point.position(X, u_from, from);
+      point.position(X, u_to, to);
+      const double g_from = integrand.gap(from), g_to = integrand.gap(to);
+      if (g_from > integrand.cut_off() && g_to > integrand.cut_off()) continue;
+      if (::fabs(g_to - g_from) > large) sums[1] += 1.0;
+      if ((g_from - inflection) * (g_to - inflection) >= 0.0) continue;
+      sums[0] += 1.0;
+      sums[2] += point.X[0];
+      sums[3] += point.X[1];
+      sums[4] += point.X[0] * point.X[0];
+      sums[5] += point.X[1] * point.X[1];
+      double phi_from, phi, gradient[3];
+      integrand.evaluate(point.A, from, phi_from, gradient, nullptr);
+      for (int k = 1; k <= 4; ++k) {
+        const double f = 0.25 * k;
+        const double x[3] = {from[0] + f * (to[0] - from[0]), from[1] + f * (to[1] - from[1]),
+                             from[2] + f * (to[2] - from[2])};
+        integrand.evaluate(point.A, x, phi, gradient, nullptr);
+        sums[5 + k] += (phi - phi_from) * point.dA;
+      }
+    }
 }
 
 // The same with the anchors at the reference positions.

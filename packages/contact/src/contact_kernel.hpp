@@ -67,6 +67,34 @@ struct ContactKernel {
   }
 };
 
+// One face per work item: face_gap_changes between the displacements of two scatters.
+template <class Surface, class Integrand>
+struct GapChangeKernel {
+  using value_type = double[];
+  unsigned value_count = gap_change_sums;
+  ElementScatter from, to;
+  ContactFaceViews faces;
+  Integrand integrand;
+  int order = 4;
+  double large = 0.0;
+
+  KOKKOS_INLINE_FUNCTION void operator()(const int face, value_type sums) const
+  {
+    constexpr int n = Surface::nodes;
+    double X[n][3], A[n][3], u_from[n][3], u_to[n][3];
+    for (int k = 0; k < n; ++k) {
+      const int node = faces.nodes(face, k);
+      from.displacement(node, u_from[k]);
+      to.displacement(node, u_to[k]);
+      for (int i = 0; i < 3; ++i) {
+        X[k][i] = faces.coordinates(node, i);
+        A[k][i] = faces.anchors(node, i);
+      }
+    }
+    face_gap_changes<Surface>(integrand, X, A, u_from, u_to, order, large, sums);
+  }
+};
+
 }  // namespace detail
 
 template <class Integrand>
@@ -99,6 +127,22 @@ public:
     totals.skipped_faces = faces.count - totals.active_faces;
     totals.active_points = static_cast<int>(sums[2]);
     return totals;
+  }
+
+  std::array<double, gap_change_sums> gap_changes(const ContactFaceViews& faces, const ElementScatter& from,
+                                    const ElementScatter& to, double fraction) const override
+  {
+    std::array<double, gap_change_sums> sums{};
+    const auto policy = Kokkos::RangePolicy<execution_space>(0, faces.count);
+    const double large = fraction * integrand_.range();
+    if (faces.face_nodes == 9) {
+      detail::GapChangeKernel<elements::Quad9Surface, Integrand> kernel{gap_change_sums, from, to, faces, integrand_, order_, large};
+      Kokkos::parallel_reduce("spatula: contact Q1C2 gap changes", policy, kernel, sums.data());
+    } else {
+      detail::GapChangeKernel<elements::Quad4Surface, Integrand> kernel{gap_change_sums, from, to, faces, integrand_, order_, large};
+      Kokkos::parallel_reduce("spatula: contact Q1C1 gap changes", policy, kernel, sums.data());
+    }
+    return sums;
   }
 
 private:

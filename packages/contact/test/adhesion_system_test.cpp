@@ -335,13 +335,16 @@ namespace {
 
 // A test-only law: a linear spring holding each surface point at the equilibrium gap, phi = k/2 (d - r_eq)^2.
 struct SpringIntegrand {
-  double stiffness = 1.0, height = 0.0, gap = 0.25;
+  double stiffness = 1.0, height = 0.0, rest = 0.25;
   KOKKOS_INLINE_FUNCTION double far_bound(const double x[3]) const { return x[2] - height; }
   KOKKOS_INLINE_FUNCTION double cut_off() const { return 1e30; }
+  KOKKOS_INLINE_FUNCTION double gap(const double x[3]) const { return x[2] - height; }
+  KOKKOS_INLINE_FUNCTION double inflection() const { return -1e30; }   // a spring has none
+  KOKKOS_INLINE_FUNCTION double range() const { return rest; }
   KOKKOS_INLINE_FUNCTION bool evaluate(const double[3], const double x[3], double& phi, double g[3],
                                        double (*H)[3]) const
   {
-    const double d = x[2] - height - gap;
+    const double d = x[2] - height - rest;
     phi = 0.5 * stiffness * d * d;
     g[0] = g[1] = 0.0;
     g[2] = stiffness * d;

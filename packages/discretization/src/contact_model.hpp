@@ -6,6 +6,7 @@
 #include "contact/contact_face.hpp"
 #include "discretization/element_scatter.hpp"
 
+#include <array>
 #include <memory>
 #include <string>
 
@@ -28,6 +29,18 @@ struct ContactTotals {
   int active_points = 0;     // quadrature points within the cut-off
 };
 
+// The contact points a Newton step carries across the law's inflection (its strongest attraction, where its stiffness
+// changes sign): the peel front's limiting points. Their count, where they sit in the reference configuration (the
+// mean and spread of X and Y) and their share of the change of Pi_c along the step; and the count of points whose
+// gap changes by more than a given fraction of r0.
+struct GapChanges {
+  int crossing = 0;
+  int large = 0;
+  double mean[2] = {0.0, 0.0}, spread[2] = {0.0, 0.0};   // X and Y of the crossing points [nm]
+  double energy_change[4] = {0.0, 0.0, 0.0, 0.0};        // at t = 0.25, 0.5, 0.75 and 1 of the step [nN nm]
+};
+using contact::gap_change_sums;   // what ContactModel::gap_changes sums (contact_face.hpp: face_gap_changes)
+
 class ContactModel {
 public:
   virtual ~ContactModel() = default;
@@ -35,6 +48,11 @@ public:
   virtual double work_of_adhesion() const = 0;   // w_adh = -phi(r_eq) of the law [nN/nm]
   virtual int quadrature_order() const = 0;
   virtual ContactTotals assemble(const ContactFaceViews& faces, const ElementScatter& scatter) const = 0;
+  // This rank's sums of face_gap_changes (contact_face.hpp) from the state of `from` to that of `to` (the
+  // scatters' displacements), a gap change above `fraction` r0 counting as large: crossing and large points, the
+  // crossing points' sums of X, Y, X^2, Y^2 and their share of Pi_c's change at t = 0.25, 0.5, 0.75, 1.
+  virtual std::array<double, gap_change_sums> gap_changes(const ContactFaceViews& faces, const ElementScatter& from,
+                                            const ElementScatter& to, double fraction) const = 0;
 };
 
 }  // namespace spatula::discretization

@@ -10,6 +10,8 @@
 #include <Teuchos_TimeMonitor.hpp>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -67,6 +69,7 @@ struct DiscreteSystem::Implementation : SystemTopology {
   Teuchos::RCP<FEMultiVector> residual;
   Teuchos::RCP<FEMultiVector> coupling;       // d f / d(prescribed master), one column per master
   Teuchos::RCP<Vector> state;                 // on the overlap map
+  Teuchos::RCP<Vector> other_state;           // a second one, for comparing two states (made when first needed)
   double damping = 0.0;
   Teuchos::RCP<const Vector> damping_anchor;
   DeviceView<int[1]> dropped_entries;   // ElementScatter::dropped (made once Kokkos is up, with the views)
@@ -308,6 +311,33 @@ void DiscreteSystem::set_contact_anchors(const Vector& x)
     }
   Kokkos::deep_copy(anchors, host);
   impl.contact_faces.anchors = anchors;
+}
+
+GapChanges DiscreteSystem::contact_gap_changes(const Vector& from, const Vector& to, double fraction)
+{
+  auto& impl = *implementation_;
+  GapChanges changes;
+  if (!impl.options.contact) return changes;
+  if (!impl.other_state) impl.other_state = Teuchos::rcp(new Vector(impl.overlap));
+  impl.state->doImport(from, *impl.importer, Tpetra::INSERT);
+  impl.other_state->doImport(to, *impl.importer, Tpetra::INSERT);
+  const auto scatter_from = impl.make_scatter(impl.master_values(from), false);
+  auto scatter_to = scatter_from;
+  scatter_to.state = impl.other_state->getLocalViewDevice(Tpetra::Access::ReadOnly);
+  const auto masters_to = impl.master_values(to);
+  for (int m = 0; m < master_count; ++m) scatter_to.masters[m] = masters_to[m];
+  const auto local = impl.options.contact->gap_changes(impl.contact_faces, scatter_from, scatter_to, fraction);
+  std::array<double, gap_change_sums> sums{};
+  Teuchos::reduceAll(*impl.comm, Teuchos::REDUCE_SUM, gap_change_sums, local.data(), sums.data());
+  changes.crossing = static_cast<int>(sums[0]);
+  changes.large = static_cast<int>(sums[1]);
+  if (changes.crossing > 0)
+    for (int i = 0; i < 2; ++i) {
+      changes.mean[i] = sums[2 + i] / sums[0];
+      changes.spread[i] = std::sqrt(std::max(0.0, sums[4 + i] / sums[0] - changes.mean[i] * changes.mean[i]));
+    }
+  for (int k = 0; k < 4; ++k) changes.energy_change[k] = sums[6 + k];
+  return changes;
 }
 
 double DiscreteSystem::mean_diagonal() const

@@ -112,6 +112,9 @@ public:
   // Anchors the contact law at the state x: a law that measures tangential travel (stiction) measures it from the
   // nodes' positions in x from now on, instead of from the undeformed spatula. Collective.
   void set_contact_anchors(const Vector& x);
+  // The contact points whose gap crosses the law's inflection, or changes by more than `fraction` r0, from the state
+  // `from` to the state `to` (all ranks; none without adhesion). Collective.
+  GapChanges contact_gap_changes(const Vector& from, const Vector& to, double fraction);
   // Mean absolute diagonal of the last assembled tangent (the scale for eta).
   double mean_diagonal() const;
 

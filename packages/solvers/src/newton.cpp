@@ -2,6 +2,7 @@
 
 #include "parameters/parameter_validation.hpp"
 #include "solvers/energy_line_search.hpp"
+#include "solvers/front_diagnosis.hpp"
 
 #include <NOX_LineSearch_Backtrack.H>
 #include <NOX_LineSearch_Generic.H>
@@ -107,6 +108,11 @@ void NewtonParameters::declare(Teuchos::ParameterList& list)
                              "how the absolute and update tolerances are applied: scaled (NOX's default, as every "
                              "recorded result ran) |f|_2 / sqrt(n) and |dx|_inf / n with n unknowns; unscaled: |f|_2 "
                              "and |dx|_inf themselves", {"scaled", "unscaled"});
+  parameters::declare_bool(list, "front diagnosis", d.front_diagnosis,
+                           "with Output/convergence tables: under each Newton iteration, the contact points its full "
+                           "step carries across the law's inflection (count, where they sit, their share of the "
+                           "adhesion energy's change) and the energy along that step at a quarter, half, three "
+                           "quarters and all of it (five more evaluations per iteration)");
   FrontEliminationParameters::declare(parameters::declare_sublist(
       list, "Front Elimination", "nonlinear elimination of the unknowns where the residual concentrates"));
 }
@@ -128,17 +134,21 @@ NewtonParameters NewtonParameters::from(const Teuchos::ParameterList& list)
   p.give_up_only_after_failure = list.get<std::string>("give up") == "after a failed step";
   p.short_steps = list.get<int>("short steps");
   p.short_step = list.get<double>("short step");
+  p.front_diagnosis = list.get<bool>("front diagnosis");
   p.elimination = FrontEliminationParameters::from(list.sublist("Front Elimination"));
   return p;
 }
 
 namespace {
 
-// Records one row of the convergence table per Newton iteration.
+// Records one row of the convergence table per Newton iteration; with `model` (a system with contact), a line under
+// it on the contact points the iteration's full step carries across the law's inflection and the energy along that
+// step (front_diagnosis.hpp).
 class TableObserver : public NOX::Observer {
 public:
-  TableObserver(NewtonResult& result, const LinearSolverFactory& linear, std::ostream* table)
-      : result_(result), linear_(linear), table_(table), start_(std::chrono::steady_clock::now())
+  TableObserver(NewtonResult& result, const LinearSolverFactory& linear, std::ostream* table,
+                const SpatulaModel* diagnosed)
+      : result_(result), linear_(linear), table_(table), diagnosed_(diagnosed), start_(std::chrono::steady_clock::now())
   {
   }
 
@@ -178,12 +188,27 @@ public:
               << row.residual_norm << "  " << row.update_norm << "  " << std::defaultfloat << std::setprecision(3)
               << std::setw(6) << row.step << "  " << std::setw(7) << row.negative_pivots << "  " << std::setw(8)
               << row.seconds << "  " << std::setw(10) << row.slope_ratio << "\n";
+    if (table_ && diagnosed_ && row.step > 0.0) *table_ << front_line(full_step(solver, row.step));
   }
 
 private:
+  // The diagnosis of the iteration's full Newton step: from the previous state along (x - previous) / step.
+  FrontDiagnosis full_step(const NOX::Solver::Generic& solver, double step) const
+  {
+    const auto tpetra = [](const NOX::Abstract::Vector& v) {
+      return Extract::getConstTpetraVector(dynamic_cast<const NOX::Thyra::Vector&>(v).getThyraRCPVector());
+    };
+    const auto previous = tpetra(solver.getPreviousSolutionGroup().getX());
+    const auto current = tpetra(solver.getSolutionGroup().getX());
+    discretization::Vector full(previous->getMap());
+    full.update(1.0 - 1.0 / step, *previous, 1.0 / step, *current, 0.0);
+    return diagnose_front(*diagnosed_, *previous, full);
+  }
+
   NewtonResult& result_;
   const LinearSolverFactory& linear_;
   std::ostream* table_;
+  const SpatulaModel* diagnosed_;
   std::chrono::steady_clock::time_point start_;
   int applications_ = 0;
 };
@@ -448,7 +473,9 @@ NewtonResult NewtonSolver::solve(discretization::Vector& x, std::ostream* table,
   }
   list->sublist("Printing").set("Output Information", 0);
   list->sublist("Solver Options").set<Teuchos::RCP<NOX::Observer>>(
-      "Observer", Teuchos::rcp(new TableObserver(result, linear_solver_, table)));
+      "Observer", Teuchos::rcp(new TableObserver(result, linear_solver_, table,
+                                    parameters_.front_diagnosis && model_->system().contact_area() > 0.0 ? model_.get()
+                                                                                                          : nullptr)));
 
   auto solver = NOX::Solver::buildSolver(group, tests, list);
   NOX::StatusTest::StatusType status = NOX::StatusTest::Unconverged;

@@ -38,6 +38,9 @@ struct NewtonParameters {
   int short_steps = 2;
   double short_step = 0.125;
   FrontEliminationParameters elimination;   // the sublist "Front Elimination"
+  // With a convergence table: under each iteration's row, the contact points its full step carries across the law's
+  // inflection and the energy along that step (front_diagnosis.hpp; five more evaluations per iteration).
+  bool front_diagnosis = false;
 
   static void declare(Teuchos::ParameterList& list);
   static NewtonParameters from(const Teuchos::ParameterList& list);
