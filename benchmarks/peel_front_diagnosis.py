@@ -6,7 +6,8 @@ iteration on its LDL^T factors, and the participation ratio of its mode), 'Outpu
 'Nonlinear Solver/front diagnosis' on:
   medium-rotation-45-54   the medium study rotation (docs/study-runs/medium/peel-rotation) restarted from its 45 deg
                           checkpoint to 54 deg with rotation steps of at most 0.9 deg (the smooth peel);
-  coarse-rotation-to-40   the default scene (coarse) to 40 deg, through its first snaps.
+  coarse-rotation-to-40   the default scene (coarse) to 40 deg, through its first snaps (and with every element
+                          split in plane, Mesh/refinement factor = 2: does the front's barrier follow the mesh?).
 each with the solver variants of VARIANTS: today's defaults ('Nonlinear Solver' and 'Linear Solver' as declared; the
 recorded medium scene's own lists are dropped), the recorded scene's solver (the study run's settings: line search
 backtrack, absolute tolerance 1e-9), 'converging extension' = 0 (an attempt fails at its iteration limit whatever
@@ -21,6 +22,7 @@ crossing points' adhesion energy. Writes docs/peel-front-diagnosis.csv and print
 docs/performance.md.
 
 usage: benchmarks/peel_front_diagnosis.py [--work DIR] [--only CASE] [--variant NAME]   (about 9 minutes; needs a build)
+--only and --variant run a part and replace its rows of the csv.
 """
 import argparse
 import collections
@@ -96,6 +98,7 @@ VARIANTS = {
     'coarse-rotation-to-40': [
         ('default', False, []),
         ('extension-0', False, [('Nonlinear Solver/converging extension', 0, 'int')]),
+        ('refinement-2', False, [('Mesh/refinement factor', 2, 'int')]),   # every pad element split 2 x 2
     ],
 }
 
@@ -157,21 +160,31 @@ def summarize(case, log, spectrum):
     }
 
 
+def write_rows(path, results):
+    """Writes the results' rows into the csv, replacing the rows of the same case and keeping the others, in the
+    order of CASES and VARIANTS."""
+    rows = {r['case']: r for r in (csv.DictReader(open(path)) if os.path.exists(path) else [])}
+    rows.update({r['case']: r for r in results})
+    order = [f'{case}-{variant[0]}' for case in CASES for variant in VARIANTS[case]]
+    fields = list(results[0]) + [k for r in rows.values() for k in r if k not in results[0]]
+    fields = list(dict.fromkeys(fields))
+    with open(path, 'w', newline='') as out:
+        writer = csv.DictWriter(out, fieldnames=fields, restval='')
+        writer.writeheader()
+        writer.writerows(rows[name] for name in order if name in rows)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('--work', default=os.path.join(ROOT, 'build', 'peel-front-diagnosis'))
     parser.add_argument('--only', choices=sorted(CASES))
-    parser.add_argument('--variant', help='run only the variants of this name (the csv is then left as it is)')
+    parser.add_argument('--variant', help='run only the variants of this name (their rows of the csv are replaced)')
     arguments = parser.parse_args()
     results = [summarize(*run(case, arguments.work, variant)) for case in CASES if arguments.only in (None, case)
                for variant in VARIANTS[case] if arguments.variant in (None, variant[0])]
     if not results:
         sys.exit(f'peel_front_diagnosis: no variant {arguments.variant!r} in {arguments.only or "any case"}')
-    if arguments.only is None and arguments.variant is None:
-        with open(os.path.join(ROOT, 'docs', 'peel-front-diagnosis.csv'), 'w', newline='') as out:
-            writer = csv.DictWriter(out, fieldnames=list(results[0]))
-            writer.writeheader()
-            writer.writerows(results)
+    write_rows(os.path.join(ROOT, 'docs', 'peel-front-diagnosis.csv'), results)
     keys = list(results[0])
     print('| ' + ' | '.join(keys) + ' |\n|' + '---|' * len(keys))
     for result in results:
