@@ -6,7 +6,7 @@ paper's. Each variant below is the frictionless Q1C2 rotation from theta_s to 36
 base (coarse mesh with 'refinement factor' 2: 2 x 2 more contact faces than the coarse pad, cheap enough to vary
 everything); the mesh series refines the coarse mesh in plane ('refinement factor' 1, 2, 4, 8: pad elements of
 about 33, 16, 8 and 4 nm; 4 is the medium mesh, 8 has the fine mesh's contact faces with the coarse shaft
-cross-section and 4 layers through the pad) and adds the medium study's rotation (docs/study-runs/medium/
+cross-section and 4 layers through the pad) and adds the medium study's rotation (results/medium/
 peel-rotation) when present:
 
   mesh          refinement factor 1, 2, 4, 8 (and the medium study run); 10 element layers through the pad
@@ -39,7 +39,7 @@ from curves import interpolate, read_curve  # noqa: E402
 from scenes import benchmark_scene  # noqa: E402
 
 APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula'))
-MEDIUM_STUDY = os.path.join(ROOT, 'docs', 'study-runs', 'medium')
+MEDIUM_STUDY = os.path.join(ROOT, 'results', 'medium')
 FINAL_THETA = 36.0
 JUMP_RELEASE = 1e-4   # Pi_c0: the app's step balance tolerance; less is an ordinary step
 MAJOR_DROP = 0.1      # the first instability proper: a jump that drops M_y by more than 10 %

@@ -1,14 +1,14 @@
 #!/usr/bin/env python3
 """The measured table behind 'Mesh/level' = auto (issue 16, item 6): error against the fine level for each candidate mesh.
 
-Every candidate runs the scene of the fine level's pull-off at 60 deg (docs/study-runs/fine/pull-off-60: frictionless
+Every candidate runs the scene of the fine level's pull-off at 60 deg (results/fine/pull-off-60: frictionless
 Q1C2, rotation to 60 deg with zero net force, then up to 600 nm of lift; rotation steps up to 2 deg, lift steps up to
 10 nm, 16 Newton iterations per attempt), one rank each, --jobs at once. Its error is the relative difference of P_max,
 Delta u_z and Delta Pi_ext (to the main snap, scripts/curves.py) from the fine level's; the largest of the three is
 what packages/mesh/src/mesh_choice.cpp tabulates and mesh_test checks against docs/mesh-choice.csv. Runs kept
-elsewhere are read, not repeated: the coarse and medium study runs (docs/study-runs/<level>/pull-off-60, which start
+elsewhere are read, not repeated: the coarse and medium study runs (results/<level>/pull-off-60, which start
 from the study rotation's checkpoint with the same step settings) and the medium equal-area run
-(docs/study-runs/variants). Wall times are those of each run's own clock; runs beside each other share the machine.
+(results/variants). Wall times are those of each run's own clock; runs beside each other share the machine.
 
   coarse-equal-area          the coarse level, Mesh/section = equal area (760 hexahedra)
   coarse-x2                  the coarse level refined 2 x 2 in plane (2,584 hexahedra)
@@ -19,7 +19,7 @@ from the study rotation's checkpoint with the same step settings) and the medium
 
 A run already complete in --work (default mesh-choice/) is read, not run again; a stopped one goes on from its
 checkpoint (--resume). --docs writes docs/mesh-choice.csv and docs/mesh-choice.md, and keeps the runs of this call (curve, mesh summary, scene,
-log) in docs/study-runs/variants/mesh-choice/.
+log) in results/variants/mesh-choice/.
 """
 import argparse
 import csv
@@ -35,7 +35,7 @@ from curves import pull_off_summary  # noqa: E402
 from scenes import benchmark_scene  # noqa: E402
 
 APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula'))
-RUNS = os.path.join(ROOT, 'docs', 'study-runs')
+RUNS = os.path.join(ROOT, 'results')
 REFERENCE = (os.path.join(RUNS, 'fine'), 'pull-off-60')
 QUANTITIES = ('P_max_nN', 'delta_u_z_nm', 'delta_Pi_ext_1e-18J')
 CANDIDATES = {   # name: (label, mesh arguments of scenes.benchmark_scene)

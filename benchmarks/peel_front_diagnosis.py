@@ -4,7 +4,7 @@
 Runs, with 'Output/tangent spectrum' (the tangent's eigenvalue nearest zero at every converged state, by inverse
 iteration on its LDL^T factors, and the participation ratio of its mode), 'Output/convergence tables' and
 'Nonlinear Solver/front diagnosis' on:
-  medium-rotation-45-54   the medium study rotation (docs/study-runs/medium/peel-rotation) restarted from its 45 deg
+  medium-rotation-45-54   the medium study rotation (results/medium/peel-rotation) restarted from its 45 deg
                           checkpoint to 54 deg with rotation steps of at most 0.9 deg (the smooth peel);
   coarse-rotation-to-40   the default scene (coarse) to 40 deg, through its first snaps (and with every element
                           split in plane, Mesh/refinement factor = 2: does the front's barrier follow the mesh?).
@@ -35,7 +35,7 @@ import xml.etree.ElementTree as ElementTree
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula'))
-ROTATION = os.path.join(ROOT, 'docs', 'study-runs', 'medium', 'peel-rotation')
+ROTATION = os.path.join(ROOT, 'results', 'medium', 'peel-rotation')
 
 
 def set_parameter(root, key, value, kind):

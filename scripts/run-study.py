@@ -22,18 +22,18 @@ scene of the study on LEVEL. A run's scene file is the study XML with the level 
 Other settings: `--set 'Linear Solver/refactor=lag'` sets a parameter in every scene of the study (sublists and
 parameters are added where missing; a new parameter's type is read from its value: true/false, an integer, a
 number, else a string), `--set peel-rotation:Loading/theta_y=90` in one scene only. Such runs are not the study's
-own: they are not restored from or kept in docs/study-runs, and --docs is refused (benchmarks/speedup.py runs Table 6
+own: they are not restored from or kept in results, and --docs is refused (benchmarks/speedup.py runs Table 6
 this way with the settings from before issue 15).
 
 Carrying a long run to another machine: with `--carry` the last checkpointed state of every run still going (its
-checkpoints, curve, scene and log) is copied to docs/study-runs/<level>/<scene>.stopped/ each time the run writes it;
+checkpoints, curve, scene and log) is copied to results/<level>/<scene>.stopped/ each time the run writes it;
 commit that, and the same command on a new machine resumes the run from there. `--scene NAME` (repeatable) runs only
 those scenes of the study, e.g. the fine runs still to come:
 `run-study.py all --mesh fine --carry --scene peel-rotation --scene pull-off-75 --scene rough-z0-4`.
 
 Results: <work>/<level>/<scene>/ per run, <work>/<level>/tables/*.csv and *.md, and with --docs docs/validation.md
 and its PNGs. Needs a build (build/apps/spatula/spatula). Runs already complete in <work> are not repeated. Each
-complete run's curve, scene, log (and a rotation's checkpoints) are kept in docs/study-runs/<level>/<scene>/ (commit
+complete run's curve, scene, log (and a rotation's checkpoints) are kept in results/<level>/<scene>/ (commit
 them): a study on another machine or with an empty <work> restores them instead of running them again.
 """
 import argparse
@@ -172,10 +172,10 @@ def scene_file(work, level, scene):
     return path
 
 
-# A complete run's results are kept in the repository (docs/study-runs/<level>/<scene>/), so that they outlive the
+# A complete run's results are kept in the repository (results/<level>/<scene>/), so that they outlive the
 # work directory (a new machine, a cleaned disk): its curve, scene, mesh summary and log, and the checkpoints of a
 # rotation that pull-offs start from. A later study restores them into the work directory instead of running again.
-ARCHIVE = os.path.join(ROOT, 'docs', 'study-runs')
+ARCHIVE = os.path.join(ROOT, 'results')
 KEPT_FILES = ('curve.csv', 'scene.xml', 'mesh_summary.csv', 'mesh_summary.txt', '.spatula-output', 'pad_slip.csv')
 
 
@@ -443,11 +443,11 @@ def main():
     parser.add_argument('--scene', action='append', default=[], metavar='SCENE',
                         help="run only this scene of the study (repeat for more); the tables cover every run present")
     parser.add_argument('--carry', action='store_true',
-                        help=f'keep the last checkpointed state of each run in docs/study-runs/<level>/<scene>'
+                        help=f'keep the last checkpointed state of each run in results/<level>/<scene>'
                              f'{STOPPED_SUFFIX}/ as it goes (commit it), and resume the runs kept there')
     parser.add_argument('--set', action='append', type=parse_override, default=[], metavar='[SCENE:]LIST/NAME=VALUE',
                         help="set a parameter in every scene (or in SCENE's only), e.g. --set 'Linear Solver/lag=4'; "
-                             'such runs are neither restored from nor kept in docs/study-runs, and --docs is refused')
+                             'such runs are neither restored from nor kept in results, and --docs is refused')
     arguments = parser.parse_args()
     if arguments.set and arguments.docs:
         parser.error('--docs documents the study scenes as written: it cannot be combined with --set')
@@ -460,7 +460,7 @@ def main():
     if unknown:
         parser.error(f"--set names scene(s) not in study {arguments.study}: {', '.join(sorted(unknown))}")
     if arguments.carry and not archiving():
-        parser.error('--carry keeps runs in docs/study-runs, which runs made with --set are not')
+        parser.error('--carry keeps runs in results, which runs made with --set are not')
     if not os.path.exists(APP):
         sys.exit(f'{APP} not found: build first (bash scripts/build.sh)')
     runs = planned_runs(arguments.study, arguments.mesh)

@@ -123,7 +123,7 @@ FIELD_PICTURES = (
 
 def field_pictures(works, directory):
     """Renders FIELD_PICTURES from the finest level among `works` (finest first) whose run wrote fields; returns
-    (file, caption) pairs. A picture no run can render now (runs restored from docs/study-runs keep no fields) keeps
+    (file, caption) pairs. A picture no run can render now (runs restored from results keep no fields) keeps
     its earlier rendering in `directory`, if there is one, so that documenting from the archive loses no figure."""
     renderer = shutil.which('pvbatch') and shutil.which('xvfb-run')
     if not renderer:

@@ -27,19 +27,19 @@ constexpr auto equal_area = SectionShape::equal_area;
 const std::vector<MeshCandidate>& mesh_candidates()
 {
   static const std::vector<MeshCandidate> candidates = {
-      {"coarse", mesh("coarse", 1, inscribed), 760, 65.62, "docs/study-runs/coarse/pull-off-60"},
+      {"coarse", mesh("coarse", 1, inscribed), 760, 65.62, "results/coarse/pull-off-60"},
       {"coarse with the equal-area section", mesh("coarse", 1, equal_area), 760, 65.95,
-       "docs/study-runs/variants/mesh-choice/coarse-equal-area"},
+       "results/variants/mesh-choice/coarse-equal-area"},
       {"coarse refined 2 x 2 with the equal-area section", mesh("coarse", 2, equal_area), 2584, 10.79,
-       "docs/study-runs/variants/mesh-choice/coarse-x2-equal-area"},
+       "results/variants/mesh-choice/coarse-x2-equal-area"},
       {"coarse refined 2 x 2", mesh("coarse", 2, inscribed), 2584, 12.98,
-       "docs/study-runs/variants/mesh-choice/coarse-x2"},
+       "results/variants/mesh-choice/coarse-x2"},
       {"coarse refined 3 x 3 with the equal-area section", mesh("coarse", 3, equal_area), 5472, 2.49,
-       "docs/study-runs/variants/mesh-choice/coarse-x3-equal-area"},
+       "results/variants/mesh-choice/coarse-x3-equal-area"},
       {"medium with the equal-area section", mesh("medium", 1, equal_area), 9424, 0.94,
-       "docs/study-runs/variants/medium-equal-area-pull-off-60"},
-      {"medium", mesh("medium", 1, inscribed), 9424, 9.75, "docs/study-runs/medium/pull-off-60"},
-      {"fine", mesh("fine", 1, inscribed), 97888, 0.0, "docs/study-runs/fine/pull-off-60"},
+       "results/variants/medium-equal-area-pull-off-60"},
+      {"medium", mesh("medium", 1, inscribed), 9424, 9.75, "results/medium/pull-off-60"},
+      {"fine", mesh("fine", 1, inscribed), 97888, 0.0, "results/fine/pull-off-60"},
   };
   return candidates;
 }
