@@ -39,9 +39,9 @@ SolidParameters SolidParameters::from(const Teuchos::ParameterList& material)
 
 namespace {
 
-// Adds `value` to the diagonal of each row in the range but the `skip`ped ones (prescribed masters): the proximal
-// damping and the identity rows of prescribed masters. A named functor, not a lambda: CUDA cannot compile a device
-// lambda inside the private DiscreteSystem::Implementation.
+// Adds `value` to the diagonal of each row in the range but the `skip`ped ones: the identity rows of prescribed
+// masters. A named functor, not a lambda: CUDA cannot compile a device lambda inside the private
+// DiscreteSystem::Implementation.
 struct AddToDiagonal {
   CrsMatrix::local_matrix_device_type matrix;
   Kokkos::View<const int*, device_type> column_of;
@@ -70,8 +70,6 @@ struct DiscreteSystem::Implementation : SystemTopology {
   Teuchos::RCP<FEMultiVector> coupling;       // d f / d(prescribed master), one column per master
   Teuchos::RCP<Vector> state;                 // on the overlap map
   Teuchos::RCP<Vector> other_state;           // a second one, for comparing two states (made when first needed)
-  double damping = 0.0;
-  Teuchos::RCP<const Vector> damping_anchor;
   DeviceView<int[1]> dropped_entries;   // ElementScatter::dropped (made once Kokkos is up, with the views)
 
   Implementation(const mesh::HexMesh& mesh_, const mesh::Partition& partition, const Constraints& constraints,
@@ -160,7 +158,6 @@ struct DiscreteSystem::Implementation : SystemTopology {
       const auto scatter = make_scatter(masters, with_jacobian);
       energy = assemble_bulk(scatter, with_jacobian, inverted);
       if (options.contact) contact = assemble_contact(scatter, with_jacobian);
-      if (with_jacobian && damping > 0.0) add_damping_diagonal();
       if (with_jacobian) add_prescribed_diagonals();
       if (with_jacobian) check_no_entry_dropped(scatter);
     }
@@ -194,16 +191,6 @@ struct DiscreteSystem::Implementation : SystemTopology {
     const auto contact = options.contact->assemble(contact_faces, scatter);
     Kokkos::fence();
     return contact;
-  }
-
-  // Proximal damping on the diagonal of every owned row that is not a prescribed master.
-  void add_damping_diagonal()
-  {
-    AddToDiagonal add{matrix->getLocalMatrixDevice(), column_of, damping, {}};
-    for (int m = 0; m < master_count; ++m)
-      add.skip[m] = control.prescribed[m] ? owned->getLocalElement(layout.masters[m]) : -1;
-    const int rows = static_cast<int>(owned->getNodeNumElements());
-    Kokkos::parallel_for("spatula: proximal damping", Kokkos::RangePolicy<execution_space>(0, rows), add);
   }
 
   // Identity rows of prescribed masters (their owner adds the diagonal once).
@@ -248,8 +235,8 @@ struct DiscreteSystem::Implementation : SystemTopology {
     return result;
   }
 
-  // Reactions: the master rows' internal forces, then prescribed rows become identity rows (residual 0); the
-  // proximal damping's force eta (x - anchor) on every other row.
+  // Reactions: the master rows' internal forces, then prescribed rows become identity rows (residual 0) and a dead
+  // load on a free master joins its row.
   void reactions_and_constraint_rows(const Vector& x, Evaluation& result)
   {
     auto values = residual->getDataNonConst(0);
@@ -262,15 +249,6 @@ struct DiscreteSystem::Implementation : SystemTopology {
       if (!control.prescribed[m] && control.applied[m] != 0.0) {   // a dead load on a free master
         if (unknown >= 0) values[unknown] -= control.applied[m];
         result.load_potential -= control.applied[m] * master_value(x, static_cast<Master>(m));
-      }
-    }
-    if (damping > 0.0) {
-      const auto anchor = damping_anchor->getData(0);
-      const auto state_values = x.getData(0);
-      for (std::size_t i = 0; i < owned->getNodeNumElements(); ++i) values[i] += damping * (state_values[i] - anchor[i]);
-      for (int m = 0; m < master_count; ++m) {
-        const int unknown = owned->getLocalElement(layout.masters[m]);
-        if (unknown >= 0 && control.prescribed[m]) values[unknown] = 0.0;
       }
     }
   }
@@ -291,12 +269,6 @@ Teuchos::RCP<CrsMatrix> DiscreteSystem::jacobian() const { return implementation
 const DofLayout& DiscreteSystem::layout() const { return implementation_->layout; }
 const NodeSpace& DiscreteSystem::nodes() const { return implementation_->space; }
 const MultiVector& DiscreteSystem::load_derivatives() const { return *implementation_->coupling; }
-
-void DiscreteSystem::set_damping(double eta, Teuchos::RCP<const Vector> anchor)
-{
-  implementation_->damping = eta;
-  implementation_->damping_anchor = std::move(anchor);
-}
 
 void DiscreteSystem::set_contact_anchors(const Vector& x)
 {

@@ -104,18 +104,13 @@ public:
   // free ones): the load vector of a continuation in that master.
   const MultiVector& load_derivatives() const;
 
-  // Proximal damping for jumps past instabilities: with eta > 0 every evaluation solves for
-  //   f(x) + eta (x - anchor) = 0,  tangent K + eta I
-  // (prescribed master rows excluded), the stationarity condition of Pi(x) + eta/2 |x - anchor|^2. eta = 0 (the
-  // default) switches it off. The energies and reactions reported stay those of the undamped system.
-  void set_damping(double eta, Teuchos::RCP<const Vector> anchor);
   // Anchors the contact law at the state x: a law that measures tangential travel (stiction) measures it from the
   // nodes' positions in x from now on, instead of from the undeformed spatula. Collective.
   void set_contact_anchors(const Vector& x);
   // The contact points whose gap crosses the law's inflection, or changes by more than `fraction` r0, from the state
   // `from` to the state `to` (all ranks; none without adhesion). Collective.
   GapChanges contact_gap_changes(const Vector& from, const Vector& to, double fraction);
-  // Mean absolute diagonal of the last assembled tangent (the scale for eta).
+  // Mean absolute diagonal of the last assembled tangent (the scale of the energy descent's shift).
   double mean_diagonal() const;
 
   // What one rank holds (elements, maps, graph, device views) and the solid's parameters: for the fields of

@@ -2,6 +2,7 @@
 #include "solvers/descent_state.hpp"
 #include "solvers/energy_line_search.hpp"
 #include "solvers/renewal_rule.hpp"
+#include "solvers/tangent_shift.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
 
@@ -48,9 +49,8 @@ EnergyMinimizer::Point EnergyMinimizer::evaluate(const discretization::Vector& x
                                                  bool factor, discretization::Vector& f)
 {
   auto& system = model_.system();
-  if (tangent) system.set_damping(d.eta, Teuchos::rcpFromRef(x));   // anchored at x: a pure shift, f unchanged
   const auto evaluation = system.evaluate(x, &f, tangent);
-  if (tangent) system.set_damping(0.0, Teuchos::null);
+  if (tangent && d.eta > 0.0 && evaluation.admissible) shift_tangent(system, d.eta);   // anchored at x: f unchanged
   Point point{evaluation.admissible, evaluation.energy(), f.norm2(), 0};
   if (!point.admissible) return point;
   if (d.scale == 0.0) d.scale = system.mean_diagonal();
