@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The study tables' peel by rotation for Table 4 (scripts/study_tables.py), on manufactured curves: a peel-rotation run that restarted from a
+"""The study tables' peel by rotation for Table 4 (scripts/study/tables.py), on manufactured curves: a peel-rotation run that restarted from a
 checkpoint of the rotation before the pull-off at 60 deg (the fine level) is joined to that rotation's earlier states,
 its Table 4 has the later rows and the detachment but no first instability (the joined curve starts after it), and a
 peel-rotation from the undeformed state is taken as it is, with its first instability found.
@@ -13,7 +13,7 @@ import tempfile
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
 sys.path.insert(0, os.path.join(ROOT, 'scripts'))
 from expectations import check, finish  # noqa: E402
-import study_tables as study  # noqa: E402
+from study import tables as study  # noqa: E402
 
 COLUMNS = ('step', 'stage', 'theta_y_deg', 'M_y_nNnm', 'M_y_per_ER0^3', 'Pi_ext_1e-18J', 'Pi_ext_per_Pi_c0',
            'Pi_int_per_Pi_c0', 'Pi_sa_per_Pi_c0', 'balance_error_per_Pi_c0', 'after_jump')

@@ -11,9 +11,8 @@ import tempfile
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
 sys.path.insert(0, os.path.join(ROOT, 'scripts'))
-from expectations import check, finish, run_study  # noqa: E402
-
-study = run_study()
+from expectations import check, finish  # noqa: E402
+from study import archive as study  # noqa: E402
 
 
 def write(path, text):

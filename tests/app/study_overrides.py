@@ -12,9 +12,9 @@ import sys
 import tempfile
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
-from expectations import check, finish, run_study  # noqa: E402
-
-study = run_study()
+sys.path.insert(0, os.path.join(ROOT, 'scripts'))
+from expectations import check, finish  # noqa: E402
+from study import scenes as study  # noqa: E402
 
 
 def parameter(text, name):
@@ -23,8 +23,8 @@ def parameter(text, name):
     return match.groups() if match else None
 
 
-# A scene read before the overrides were known (run-study.py's main once checked the --set scene names that way,
-# and the cached text then hid every override from the runs) must not keep its old text.
+# A scene read before the overrides were known (as when the command line checks the --set scene names) must not keep
+# its old text: a cached text would hide every override from the runs.
 check(study.scene_level('peel-rotation') == 'medium', 'peel-rotation is not a medium-level scene')
 before = study.scene_text('peel-rotation')
 for entry in ('Linear Solver/lag=4', 'Linear Solver/MUMPS/low rank tolerance=0.0', 'Nonlinear Solver/line search=backtrack',

@@ -6,10 +6,10 @@ import subprocess
 
 from convergence import LEVELS
 from curves import read_curve
-from study_runs import complete, started
-from study_tables import PAPER_TABLE4, STICTION_RUNS, rotation_curve
+from study.runs import complete, started
+from study.tables import PAPER_TABLE4, STICTION_RUNS, rotation_curve
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
 def plots(results, directory):

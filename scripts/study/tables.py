@@ -4,7 +4,7 @@ import os
 
 from convergence import ASSUMED_ORDER, LEVELS, richardson
 from curves import interpolate, pad_slip, pull_off_summary, read_curve
-from study_runs import complete, outcome, started
+from study.runs import complete, outcome, started
 
 
 # Fig. 9's pull-offs at 60 deg: (scene, label, end face free in X), for its table and its plot.
@@ -14,7 +14,7 @@ STICTION_RUNS = (('pull-off-60', 'frictionless', False),
 
 
 def paper_values():
-    """The paper's values this project may use, from scripts/paper-values.csv (its Tables 4, 5 and 6 and Pi_c0 of
+    """The paper's values this project may use, from scripts/study/paper-values.csv (its Tables 4, 5 and 6 and Pi_c0 of
     Sec. 3; the rest are held out): (Table 4, Table 6, Table 5's Pi_ext,0, Pi_c0), the tables keyed by theta_y (an
     int, or a label such as '31-')."""
     tables = {'table4': {}, 'table5': {}, 'table6': {}}
@@ -57,7 +57,7 @@ def rotation_curve(work):
     return None, None
 
 
-# A peel by rotation kept under another name: the fine level's rotation from 60 deg (twelfth session), restarted from
+# A peel by rotation kept under another name: the fine level's rotation from 60 deg, restarted from
 # the 60 deg state of the pull-off at 60 deg, whose checkpoints were lost with its machine. A study's own peel-rotation
 # run (from the undeformed state) takes its place once complete.
 EARLIER_ROTATION = 'peel-rotation-from-60'

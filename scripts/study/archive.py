@@ -1,0 +1,125 @@
+"""The kept runs (results/<level>/<scene>/): a complete run archived and restored, a run still going carried as
+<scene>.stopped/ and restored as a stopped run for `spatula --resume`."""
+import os
+import re
+import shutil
+
+from curves import pad_slip, pull_off_summary
+from run_lock import directory_lock
+from study.runs import complete
+from study.scenes import DEPENDS, OVERRIDES, ROOT
+from study.tables import STICTION_RUNS
+
+# A complete run's results are kept in the repository (results/<level>/<scene>/), so that they outlive the
+# work directory (a new machine, a cleaned disk): its curve, scene, mesh summary and log, and the checkpoints of a
+# rotation that pull-offs start from. A later study restores them into the work directory instead of running again.
+ARCHIVE = os.path.join(ROOT, 'results')
+KEPT_FILES = ('curve.csv', 'scene.xml', 'mesh_summary.csv', 'mesh_summary.txt', '.spatula-output', 'pad_slip.csv')
+
+
+def archiving():
+    """Whether runs are restored from and kept in ARCHIVE: not when --set changed the scenes (not the study's own)."""
+    return not OVERRIDES
+
+
+def archive(work, level, scene):
+    """Copies the complete run's kept files into ARCHIVE/<level>/<scene>/."""
+    source, kept = os.path.join(work, level, scene), os.path.join(ARCHIVE, level, scene)
+    os.makedirs(kept, exist_ok=True)
+    if scene in {name for name, _, _ in STICTION_RUNS}:   # the slip needs the fields, which are not kept
+        try:
+            pad_slip(os.path.join(work, level), scene, pull_off_summary(os.path.join(work, level), scene)['u_z_at_P_max'])
+        except ImportError as error:
+            print(f'{scene}: pad slip not measured ({error}); the archive keeps no fields to measure it later')
+    names = KEPT_FILES + (('checkpoints.h5',) if scene in DEPENDS.values() else ())
+    for name in names:
+        if os.path.exists(os.path.join(source, name)):
+            shutil.copyfile(os.path.join(source, name), os.path.join(kept, name))
+    log = os.path.join(work, level, scene + '.log')
+    if os.path.exists(log):
+        shutil.copyfile(log, os.path.join(kept, 'run.log'))
+    shutil.rmtree(kept + STOPPED_SUFFIX, ignore_errors=True)   # a carried stopped state of it is no longer needed
+
+
+def put_back(kept, target_directory, log):
+    """Copies a kept run (complete or stopped) into target_directory, replacing it whole, and its run.log to `log`.
+    Under the run's directory lock: a directory a live run is writing is never replaced (run_lock.DirectoryInUse)."""
+    run_directory = re.sub(r'\.(partial|incomplete)$', '', target_directory)
+    with directory_lock(run_directory):
+        os.makedirs(target_directory + '.restoring', exist_ok=True)
+        for name in os.listdir(kept):
+            if name != 'run.log':
+                shutil.copyfile(os.path.join(kept, name), os.path.join(target_directory + '.restoring', name))
+        if os.path.exists(os.path.join(kept, 'run.log')):
+            shutil.copyfile(os.path.join(kept, 'run.log'), log)
+        shutil.rmtree(target_directory, ignore_errors=True)
+        os.replace(target_directory + '.restoring', target_directory)
+
+
+def restore(work, runs):
+    """Puts the archived complete runs among `runs` that <work> lacks back into <work>; returns them."""
+    restored = []
+    for level, scene in runs:
+        kept, target_directory = os.path.join(ARCHIVE, level, scene), os.path.join(work, level, scene)
+        if complete(os.path.join(work, level), scene) or not os.path.exists(os.path.join(kept, 'curve.csv')):
+            continue
+        put_back(kept, target_directory, os.path.join(work, level, scene + '.log'))
+        restored.append((level, scene))
+    return restored
+
+
+# With --carry, the last checkpointed state of every run still going is kept in ARCHIVE/<level>/<scene>.stopped/ as
+# the run writes it (every 'Output/checkpoint interval' minutes), with its curve, scene and log: commit it, and a
+# study on another machine resumes the run from there instead of starting it again. Its fields are
+# not kept (the resumed run writes its fields from the state it resumes at).
+STOPPED_SUFFIX = '.stopped'
+CARRIED_FILES = ('checkpoints.h5', 'curve.csv', 'scene.xml', 'mesh_summary.csv', 'mesh_summary.txt', '.spatula-output')
+
+
+def carry(work, level, scene, carried):
+    """Copies the stopped-run files of the running or stopped <scene> into ARCHIVE/<level>/<scene>.stopped/ when its
+    checkpoints file has changed since the last copy (`carried`: file -> modification time copied)."""
+    for suffix in ('.partial', '.incomplete'):
+        source = os.path.join(work, level, scene + suffix)
+        checkpoints = os.path.join(source, 'checkpoints.h5')
+        kept = os.path.join(ARCHIVE, level, scene + STOPPED_SUFFIX)
+        try:
+            stamp = os.path.getmtime(checkpoints)
+            if carried.get(checkpoints) == stamp:
+                return
+            shutil.rmtree(kept + '.copying', ignore_errors=True)
+            os.makedirs(kept + '.copying')
+            # The log first: a checkpoint the log names is then in the copied file (the app writes the file before
+            # it logs), so a pull-off on the next machine never waits on a label the carried file lacks.
+            log = os.path.join(work, level, scene + '.log')
+            if os.path.exists(log):
+                shutil.copyfile(log, os.path.join(kept + '.copying', 'run.log'))
+            for name in CARRIED_FILES:
+                if os.path.exists(os.path.join(source, name)):
+                    shutil.copyfile(os.path.join(source, name), os.path.join(kept + '.copying', name))
+        except FileNotFoundError:   # the app renamed its directory meanwhile (finished, stopped, resumed): next poll
+            shutil.rmtree(kept + '.copying', ignore_errors=True)
+            continue
+        # Swapped in without a moment with no kept copy: the old one is moved aside first.
+        if os.path.exists(kept):
+            shutil.rmtree(kept + '.old', ignore_errors=True)
+            os.replace(kept, kept + '.old')
+        os.replace(kept + '.copying', kept)
+        shutil.rmtree(kept + '.old', ignore_errors=True)
+        carried[checkpoints] = stamp
+        return
+
+
+def restore_stopped(work, runs):
+    """Puts the carried stopped runs among `runs` that <work> has neither complete nor stopped back into <work> as
+    stopped runs (<scene>.incomplete/, which `spatula --resume` goes on from); returns them."""
+    restored = []
+    for level, scene in runs:
+        kept, directory = os.path.join(ARCHIVE, level, scene + STOPPED_SUFFIX), os.path.join(work, level)
+        if not os.path.exists(os.path.join(kept, 'checkpoints.h5')) or complete(directory, scene) or any(
+                os.path.exists(os.path.join(directory, scene + suffix)) for suffix in ('.partial', '.incomplete')):
+            continue
+        target_directory = os.path.join(directory, scene + '.incomplete')
+        put_back(kept, target_directory, os.path.join(directory, scene + '.log'))
+        restored.append((level, scene))
+    return restored
