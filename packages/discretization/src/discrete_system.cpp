@@ -17,26 +17,6 @@
 
 namespace spatula::discretization {
 
-void SolidParameters::declare(Teuchos::ParameterList& material)
-{
-  const SolidParameters d;   // the defaults
-  using parameters::Range;
-  parameters::declare_double(material, "E", d.young, "Young's modulus [GPa]", Range::positive());
-  parameters::declare_double(material, "nu", d.poisson, "Poisson's ratio", {-1.0, 0.5, true, true});
-  parameters::declare_int(material, "quadrature order", d.quadrature_order,
-                          "Gauss points per direction in each hexahedron",
-                          Range::closed(1, 4));
-}
-
-SolidParameters SolidParameters::from(const Teuchos::ParameterList& material)
-{
-  SolidParameters p;
-  p.young = material.get<double>("E");
-  p.poisson = material.get<double>("nu");
-  p.quadrature_order = material.get<int>("quadrature order");
-  return p;
-}
-
 namespace {
 
 // Adds `value` to the diagonal of each row in the range but the `skip`ped ones: the identity rows of prescribed
@@ -62,6 +42,7 @@ struct AddToDiagonal {
 // The assembly: the topology's elements and faces evaluated into the FE matrix and vectors it was built for.
 struct DiscreteSystem::Implementation : SystemTopology {
   SolidParameters solid;
+  std::shared_ptr<const SolidModel> solid_model;
   SystemOptions options;
   MasterControl control;
 
@@ -77,7 +58,7 @@ struct DiscreteSystem::Implementation : SystemTopology {
                  const SystemOptions& options_)
       : SystemTopology(mesh_, partition, constraints, options_.enrichment, options_.contact != nullptr,
                        std::move(comm_)),
-        solid(solid_), options(options_), matrix(Teuchos::rcp(new FECrsMatrix(graph))),
+        solid(solid_), solid_model(SolidLawRegistry::instance().make(solid_)), options(options_), matrix(Teuchos::rcp(new FECrsMatrix(graph))),
         residual(Teuchos::rcp(new FEMultiVector(owned, graph->getImporter(), 1))),
         coupling(Teuchos::rcp(new FEMultiVector(owned, graph->getImporter(), master_count))),
         state(Teuchos::rcp(new Vector(overlap))), dropped_entries("dropped tangent entries")
@@ -127,17 +108,6 @@ struct DiscreteSystem::Implementation : SystemTopology {
     return value;
   }
 
-  template <class Shape>
-  double solid_block(const char* label, const ElementScatter& scatter, const DeviceView<int**>& nodes,
-                     const DeviceView<std::int64_t*>& ids, const DeviceView<std::int64_t[1]>& inverted)
-  {
-    double energy = 0.0;
-    SolidKernel<Shape> kernel{scatter, nodes, ids, coordinates, inverted, solid.law(), solid.order(Shape::nodes)};
-    Kokkos::parallel_reduce(label, Kokkos::RangePolicy<execution_space>(0, static_cast<int>(nodes.extent(0))),
-                            kernel, energy);
-    return energy;
-  }
-
   // Residual (and tangent) of the state x: the bulk and contact blocks scattered into the global system, the
   // constraints' rows, the totals over the ranks, then the reactions.
   Evaluation evaluate(const Vector& x, Vector* out_residual, bool with_jacobian)
@@ -176,10 +146,8 @@ struct DiscreteSystem::Implementation : SystemTopology {
   {
     Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer(
         with_jacobian ? "spatula: assembly bulk (residual + tangent)" : "spatula: assembly bulk (residual)"));
-    double energy = 0.0;
-    energy += solid_block<elements::Hex8Shape>("spatula: solid hex8 assembly", scatter, hex8_nodes, hex8_ids, inverted);
-    energy +=
-        solid_block<elements::Hex13Shape>("spatula: solid hex13 assembly", scatter, hex13_nodes, hex13_ids, inverted);
+    const double energy =
+        solid_model->assemble({hex8_nodes, hex13_nodes, hex8_ids, hex13_ids, coordinates}, scatter, inverted);
     Kokkos::fence();
     return energy;
   }
@@ -338,5 +306,6 @@ Evaluation DiscreteSystem::evaluate(const Vector& x, Vector* residual, bool with
 
 const SystemTopology& DiscreteSystem::topology() const { return *implementation_; }
 const SolidParameters& DiscreteSystem::solid() const { return implementation_->solid; }
+const SolidModel& DiscreteSystem::solid_model() const { return *implementation_->solid_model; }
 
 }  // namespace spatula::discretization

@@ -10,7 +10,7 @@
 // force is returned as the reaction.
 #include "discretization/contact_model.hpp"
 #include "discretization/dof_layout.hpp"
-#include "laws/neo_hookean.hpp"
+#include "discretization/solid_model.hpp"
 #include "discretization/rigid_face.hpp"
 #include "discretization/tpetra_types.hpp"
 
@@ -26,20 +26,6 @@
 namespace spatula::discretization {
 
 struct SystemTopology;
-
-struct SolidParameters {
-  double young = 2.0;     // E [GPa] = [nN / nm^2]
-  double poisson = 0.2;   // nu
-  int quadrature_order = 2;   // Gauss points per direction in each hexahedron
-
-  // The material's law, and the Gauss order of an element with that many nodes (a Q1C2 Hex13 takes at least 3: its
-  // quadratic face).
-  laws::NeoHookean law() const { return laws::NeoHookean::from_young(young, poisson); }
-  int order(int element_nodes) const { return element_nodes == 13 ? std::max(quadrature_order, 3) : quadrature_order; }
-
-  static void declare(Teuchos::ParameterList& material);
-  static SolidParameters from(const Teuchos::ParameterList& material);
-};
 
 // Which end-face masters are prescribed (their values are then taken from the state vector).
 struct MasterControl {
@@ -117,6 +103,7 @@ public:
   // system_fields.hpp and diagnostics.
   const SystemTopology& topology() const;
   const SolidParameters& solid() const;
+  const SolidModel& solid_model() const;   // the law 'Material/law' names
 
 private:
   struct Implementation;

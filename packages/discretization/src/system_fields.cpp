@@ -95,23 +95,20 @@ void set_space_displacements(const DiscreteSystem& system, Vector& x, const std:
 std::vector<double> element_cauchy_trace(const DiscreteSystem& system, const Vector& x)
 {
   const auto& topology = system.topology();
-  const auto& solid = system.solid();
   const auto u = space_displacements(system, x);
-  const auto law = solid.law();
+  const auto& model = system.solid_model();
   std::vector<double> local(topology.mesh.element_count(), 0.0), global(local.size(), 0.0);
-  auto trace = [&](const auto& nodes, auto shape, int order) {
-    using Shape = decltype(shape);
-    double X[Shape::nodes][3], ue[Shape::nodes][3];
-    for (int a = 0; a < Shape::nodes; ++a)
+  auto trace = [&](const auto& nodes, int count) {
+    double X[13][3], ue[13][3];
+    for (int a = 0; a < count; ++a)
       for (int i = 0; i < 3; ++i) {
         X[a][i] = topology.space.coordinates[nodes[a]][i];
         ue[a][i] = u[3 * nodes[a] + i];
       }
-    return elements::mean_cauchy_trace<Shape>(law, X, ue, order);
+    return model.mean_cauchy_trace(X, ue, count);
   };
-  for (auto e : topology.hex8) local[e] = trace(topology.mesh.elements[e], elements::Hex8Shape{}, solid.order(8));
-  for (auto k : topology.hex13)
-    local[topology.space.hex13_elements[k]] = trace(topology.space.hex13_nodes[k], elements::Hex13Shape{}, solid.order(13));
+  for (auto e : topology.hex8) local[e] = trace(topology.mesh.elements[e], 8);
+  for (auto k : topology.hex13) local[topology.space.hex13_elements[k]] = trace(topology.space.hex13_nodes[k], 13);
   Teuchos::reduceAll(*topology.comm, Teuchos::REDUCE_SUM, static_cast<int>(local.size()), local.data(), global.data());
   return global;
 }

@@ -1,8 +1,10 @@
 // The assembled system: the tangent (with the rigid end face's chain rule) against finite differences of the
-// residual, identity rows of prescribed masters with their reactions, and identical results on 1 and 2 ranks.
+// residual, identity rows of prescribed masters with their reactions, and identical results on 1 and 2 ranks; the
+// solid's law chosen by name ('Material/law'), a law added by name used by the assembly and the tr(sigma) field.
 #include "discretization/discrete_system.hpp"
 #include "discretization/system_fields.hpp"
 #include "mesh/spatula_mesher.hpp"
+#include "parameters/parameter_validation.hpp"
 
 #include <Teuchos_DefaultComm.hpp>
 #include <Teuchos_DefaultMpiComm.hpp>
@@ -22,12 +24,12 @@ struct Fixture {
   mesh::HexMesh mesh = mesh::mesh_spatula(shape, mesh::MeshParameters{});
   std::array<double, 3> centre() const { return {shape.point(1).x, shape.point(1).y, shape.point(1).z}; }
 
-  std::unique_ptr<DiscreteSystem> system(Teuchos::RCP<const Teuchos::Comm<int>> comm) const
+  std::unique_ptr<DiscreteSystem> system(Teuchos::RCP<const Teuchos::Comm<int>> comm,
+                                         const discretization::SolidParameters& solid = {}) const
   {
     const auto partition = mesh::partition_mesh(mesh, comm->getSize());
     return std::make_unique<DiscreteSystem>(mesh, partition,
-                                            discretization::spatula_constraints(mesh, centre(), false),
-                                            discretization::SolidParameters{}, comm);
+                                            discretization::spatula_constraints(mesh, centre(), false), solid, comm);
   }
 
   // A smooth, non-trivial displacement field (bending of the shaft plus a wave in the pad) [nm].
@@ -147,4 +149,50 @@ TEST(DiscreteSystem, InvertedElementIsReportedNotNaN)
   EXPECT_FALSE(evaluation.admissible);
   EXPECT_GE(evaluation.inverted_element, 0);
   EXPECT_LT(evaluation.inverted_element, fixture.mesh.element_count());
+}
+
+// A law added to the registry by name is what the assembly and the tr(sigma) field use, with no other change: the
+// Neo-Hookean law with E doubled at the same nu (its energy is linear in the Lame constants) gives exactly twice the
+// energy, residual and stress field of the registered 'neo-hookean' at the same state. An unknown name is refused
+// naming the key and the laws there are.
+TEST(SolidLaws, ALawAddedByNameIsUsedByTheAssemblyAndTheStressField)
+{
+  discretization::SolidLawRegistry::instance().add("twice neo-hookean", [](const discretization::SolidParameters& p) {
+    return std::make_shared<discretization::LawSolidModel<laws::NeoHookean>>(
+        "twice neo-hookean", laws::NeoHookean::from_young(2.0 * p.young, p.poisson), p);
+  });
+  auto comm = Teuchos::DefaultComm<int>::getComm();
+  Fixture fixture;
+  discretization::SolidParameters twice;
+  twice.law = "twice neo-hookean";
+  auto plain = fixture.system(comm), doubled = fixture.system(comm, twice);
+  EXPECT_EQ(plain->solid_model().name(), "neo-hookean");
+  EXPECT_EQ(doubled->solid_model().name(), "twice neo-hookean");
+  auto x = plain->create_vector();
+  discretization::set_displacements(*plain, *x, fixture.field());
+  auto f_plain = plain->create_vector(), f_doubled = doubled->create_vector();
+  const auto a = plain->evaluate(*x, f_plain.get(), false), b = doubled->evaluate(*x, f_doubled.get(), false);
+  ASSERT_GT(a.internal_energy, 0.0);
+  EXPECT_NEAR(b.internal_energy, 2.0 * a.internal_energy, 1e-12 * a.internal_energy);
+  f_doubled->update(-2.0, *f_plain, 1.0);
+  EXPECT_LT(f_doubled->normInf(), 1e-12 * f_plain->normInf());
+  const auto trace_plain = discretization::element_cauchy_trace(*plain, *x);
+  const auto trace_doubled = discretization::element_cauchy_trace(*doubled, *x);
+  double largest = 0.0;
+  for (std::size_t e = 0; e < trace_plain.size(); ++e) {
+    EXPECT_NEAR(trace_doubled[e], 2.0 * trace_plain[e], 1e-12 * std::abs(trace_plain[e]) + 1e-15) << "element " << e;
+    largest = std::max(largest, std::abs(trace_plain[e]));
+  }
+  EXPECT_GT(largest, 0.0);
+
+  discretization::SolidParameters unknown;
+  unknown.law = "rubber";
+  try {
+    fixture.system(comm, unknown);
+    ADD_FAILURE() << "an unknown law was accepted";
+  } catch (const parameters::InputError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("'Material/law' = 'rubber'"), std::string::npos) << message;
+    EXPECT_NE(message.find("'neo-hookean'"), std::string::npos) << message;
+  }
 }
