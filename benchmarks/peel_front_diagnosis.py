@@ -8,7 +8,7 @@ iteration on its LDL^T factors, and the participation ratio of its mode), 'Outpu
                           checkpoint to 54 deg with rotation steps of at most 0.9 deg (the smooth peel);
   coarse-rotation-to-40   the default scene (coarse) to 40 deg, through its first snaps (and with every element
                           split in plane, Mesh/refinement factor = 2: does the front's barrier follow the mesh?).
-each with the solver variants of VARIANTS: today's defaults ('Nonlinear Solver' and 'Linear Solver' as declared; the
+each with the solver variants of VARIANTS: the current defaults ('Nonlinear Solver' and 'Linear Solver' as declared; the
 recorded medium scene's own lists are dropped), the recorded scene's solver (the study run's settings: line search
 backtrack, absolute tolerance 1e-9), 'converging extension' = 0 (an attempt fails at its iteration limit whatever
 its progress), and the two uses of 'Nonlinear Solver/Front Elimination'. For each: converged states, tangents
@@ -107,7 +107,7 @@ def run(case, work, variant):
     source, settings = CASES[case]
     label, keep_solver, variant_settings = variant
     root = ElementTree.parse(source).getroot()
-    if not keep_solver:   # today's solver defaults
+    if not keep_solver:   # the current solver defaults
         for child in [c for c in root if c.tag == 'ParameterList' and c.get('name') in ('Nonlinear Solver',
                                                                                          'Linear Solver')]:
             root.remove(child)

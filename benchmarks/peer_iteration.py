@@ -42,7 +42,7 @@ def scene(directory, keep_workspace):
         'Linear Solver': {'refactor': 'lag', 'lag': 0, 'MUMPS': {'symmetric': True, 'keep workspace': keep_workspace}},
         'Output': {'directory': directory, 'convergence tables': True},
     }
-    if keep_workspace is None:   # today's defaults (benchmarks/speedup.py)
+    if keep_workspace is None:   # the current defaults (benchmarks/speedup.py)
         del entries['Linear Solver']
     return parameter_list('peer comparison', entries) + '\n'
 

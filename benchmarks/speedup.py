@@ -5,7 +5,7 @@ docs/performance.md.
 
 Cases (each 'before' is the code as it was at commit 0f7a416, reached through the parameters that keep its
 behaviour: 'Linear Solver/refactor' = lag with 'lag' 4, full-rank MUMPS, 'Nonlinear Solver/non-contracting
-iterations' = 0; 'after' is today's defaults):
+iterations' = 0; 'after' is the current defaults):
   fine-newton-iteration   benchmarks' solid_benchmark on the fine mesh (318,087 unknowns), 2 ranks: seconds per
                           Newton iteration of a 2.5 deg rotation step of the spatula without adhesion; also the
                           factorization memory MUMPS reports (INFOG(22), all ranks). A third run with a fresh
@@ -17,7 +17,7 @@ iterations' = 0; 'after' is today's defaults):
                           below: lift steps up to 10 nm, 16 iterations per attempt).
   peer-medium-iteration   per Newton iteration on the peer's comparison scene (medium, Q1C1, 20 nm lift from
                           theta_s): before = the FEniCSx peer of ../shared/peers (MUMPS Cholesky every iteration),
-                          after = ours with today's defaults; also the whole scene's Newton time of each. Needs
+                          after = ours with the current defaults; also the whole scene's Newton time of each. Needs
                           python3-dolfinx; skipped with a note without it.
 
   medium-table6-study     Table 6 as scripts/run-study.py runs it on the medium mesh, both cores (two runs at once, one
@@ -283,7 +283,7 @@ def peer_medium_iteration(work):
     if subprocess.run(['/usr/bin/python3', '-c', 'import dolfinx'], capture_output=True).returncode != 0:
         print('python3-dolfinx is not installed: peer-medium-iteration skipped (apt-get install python3-dolfinx)')
         return []
-    peer_iteration.VARIANTS['ours-default'] = None   # today's defaults (no Linear Solver entries)
+    peer_iteration.VARIANTS['ours-default'] = None   # the current defaults (no Linear Solver entries)
     ours = peer_iteration.run_ours(work, 'ours-default', 0)
     peer = peer_iteration.run_peer(work, ours, 0)
     change = abs(ours['P_z_final'] / peer['P_z_final'] - 1) * 100

@@ -12,39 +12,26 @@ after 'maximum iterations' = 12; NOX's scaled norms):
   default                 the defaults before the fold-aware rule: Eisenstat-Walker, the give-up rule off
   after-failure           the give-up rule 2 x 0.5 only in attempts that retry a load after a failed step
   cost-refactor           after-failure with 'Linear Solver/refactor' = cost (measured time decides refactoring)
-  session-3               the defaults before the three rules below (secant predictor, 'short steps' 0,
+  secant-1e-9               the defaults before the three rules below (secant predictor, 'short steps' 0,
                           'absolute tolerance' 1e-9)
-  quadratic               session-3 with the quadratic predictor (Rotation/Lift Steps 'predictor')
+  quadratic               secant-1e-9 with the quadratic predictor (Rotation/Lift Steps 'predictor')
   quadratic-short-steps   and 'short steps' 2 x 0.125 (a line search cut short twice ends any attempt)
-  session-4               the defaults before 'predict after a failure' (a retry after a failed attempt started
+  retry-load-only               the defaults before 'predict after a failure' (a retry after a failed attempt started
                           from the last converged state with only the load moved)
-  session-5               the defaults before the energy line search ('line search' = backtrack, 'absolute
+  backtrack-1e-6               the defaults before the energy line search ('line search' = backtrack, 'absolute
                           tolerance' 1e-6); every configuration above also runs with these two
-  energy-line-search      session-5 with 'line search' = energy
-  new                     today's defaults (as the parameter list declares them: the energy line search and the
+  energy-line-search      backtrack-1e-6 with 'line search' = energy
+  new                     the current defaults (as the parameter list declares them: the energy line search and the
                           'absolute tolerance' 1e-5)
   give-up-always(-3)      new with the give-up rule (2, or 3, iterations that do not halve |f|) in every attempt,
                           the first at a load too
-  give-up-floor-0         new with 'give up above tolerance' = 0 (the give-up rules count at any |f|, as before
-                          the seventh session)
+  give-up-floor-0         new with 'give up above tolerance' = 0 (the give-up rules count at any |f|)
   descent-cost            new with 'Loading/Jump/refactor' = cost (the jumps' energy descents keep their factors
                           while the measured rate of decrease of Pi pays for it)
   descend-after-1 / -2    new with 'Loading/Jump/descend after failures' = 1 or 2 (the energy descent at the load
                           of the first or second failed attempt in a row, an ordinary step if it releases no more
                           than the step balance tolerance); -2-cost with the cost rule as well
-(A 'resume' rule, run 2026-12-02 and since removed, restarted the increments at half the failed one once the path
-had passed a failed load: 1,256 -> 1,231 tangents at 45 deg, 1,185 -> 1,215 at 60 deg, CPU 0.98 / 1.07: no gain.
-A fold predictor, run the same day and since removed, extrapolated 1 / |dx/dload|^2 of the last two steps to zero
-(exact for a quadratic fold) and halved the increments towards the predicted fold: 1,255 -> 1,247 tangents at
-45 deg, failed attempts 100 -> 93: the spatula's folds (a contact zone letting go) give no warning two steps ahead.
-A memory of the shift in the jumps' energy descents, run 2026-12-02 (fourth session) and since removed, started each
-search for a positive definite shifted tangent at the last shift that had sufficed instead of climbing from 1e-6:
-the descents' factorizations rose from 468 to 906 at 45 deg (the larger shifts damp the steps that escape a saddle),
-and with the looser tolerance one descent cycled without settling. An estimate of the negative eigenvalue by four
-inverse iterations on the indefinite factors (shift by twice the Rayleigh quotient when negative, which never exceeds
-twice the shift needed), run the same day and since removed: 452 -> 456 descent factorizations when only a settled
-quotient was used, 449 when any negative one was; the tangent's soft contact modes cluster near zero, so the
-quotient settles rarely and bounds the lowest eigenvalue loosely.)
+(Rules tried and removed, with their counts: CHANGELOG.md, "Measured and not kept".)
 It records CPU seconds, tangents, Newton iterations, failed step attempts, and the change of P_max, Delta u_z and
 Delta Pi_ext against the base. Runs one after another (a quiet machine: CPU times are compared):
 
@@ -69,16 +56,16 @@ from scenes import benchmark_scene  # noqa: E402
 APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula'))
 # The rules added later (quadratic predictor, short steps, absolute tolerance 1e-6) switched off: the configurations
 # recorded before them run as they were.
-SESSION_3 = {'short steps': 0, 'absolute tolerance': 1e-9, 'Steps': {'predictor': 'secant'}}
+SECANT_1E_9 = {'short steps': 0, 'absolute tolerance': 1e-9, 'Steps': {'predictor': 'secant'}}
 LAG = {'Linear Solver': {'refactor': 'lag'}}   # a factorization serves 4 tangents (before 'refactor' = cost)
-BEFORE = {**SESSION_3, 'non-contracting iterations': 0, 'forcing term': 'constant', **LAG}   # before issue 15
+BEFORE = {**SECANT_1E_9, 'non-contracting iterations': 0, 'forcing term': 'constant', **LAG}   # before the step-control rules
 ALWAYS = {'give up': 'always'}   # the rule in every attempt, as it was before 'give up' existed
-GIVE_UP = {**SESSION_3, 'non-contracting iterations': 2, 'contraction': 0.5, **ALWAYS, **LAG}
-AFTER_FAILURE = {**SESSION_3, 'non-contracting iterations': 2, 'contraction': 0.5, 'give up': 'after a failed step'}
-# The defaults before the energy line search and the absolute tolerance 1e-5 (2026-12-02, sixth session).
-SESSION_5 = {'line search': 'backtrack', 'absolute tolerance': 1e-6}
+GIVE_UP = {**SECANT_1E_9, 'non-contracting iterations': 2, 'contraction': 0.5, **ALWAYS, **LAG}
+AFTER_FAILURE = {**SECANT_1E_9, 'non-contracting iterations': 2, 'contraction': 0.5, 'give up': 'after a failed step'}
+# The defaults before the energy line search and the absolute tolerance 1e-5.
+BACKTRACK_1E_6 = {'line search': 'backtrack', 'absolute tolerance': 1e-6}
 EARLIER = {   # each as the rows of docs/step-control.csv were run ('Linear Solver': that list's entries,
-              # 'Steps': entries of both step lists, 'Jump': Loading/Jump's), with SESSION_5 below them
+              # 'Steps': entries of both step lists, 'Jump': Loading/Jump's), with BACKTRACK_1E_6 below them
     'base': BEFORE,
     'non-contracting-3': {**BEFORE, 'non-contracting iterations': 3, 'contraction': 1.0, **ALWAYS},
     'non-contracting-2': {**BEFORE, 'non-contracting iterations': 2, 'contraction': 1.0, **ALWAYS},
@@ -87,16 +74,16 @@ EARLIER = {   # each as the rows of docs/step-control.csv were run ('Linear Solv
     'unscaled': {**BEFORE, 'norms': 'unscaled'},
     'constant': {**GIVE_UP, 'forcing term': 'constant'},   # runs 6, 7
     'Eisenstat-Walker': GIVE_UP,                            # runs 6, 7
-    'default': {**SESSION_3, 'non-contracting iterations': 0, **LAG},   # Eisenstat-Walker, no give-up rule
+    'default': {**SECANT_1E_9, 'non-contracting iterations': 0, **LAG},   # Eisenstat-Walker, no give-up rule
     'after-failure': {**AFTER_FAILURE, **LAG},
     'cost-refactor': {**AFTER_FAILURE, 'Linear Solver': {'refactor': 'cost'}},
-    'session-3': SESSION_3,
+    'secant-1e-9': SECANT_1E_9,
     'quadratic': {'short steps': 0, 'absolute tolerance': 1e-9},
     'quadratic-short-steps': {'absolute tolerance': 1e-9},
-    'session-4': {'Steps': {'predict after a failure': False}},
-    'session-5': {},
+    'retry-load-only': {'Steps': {'predict after a failure': False}},
+    'backtrack-1e-6': {},
 }
-CONFIGURATIONS = {**{name: {**SESSION_5, **entries} for name, entries in EARLIER.items()},
+CONFIGURATIONS = {**{name: {**BACKTRACK_1E_6, **entries} for name, entries in EARLIER.items()},
                   'energy-line-search': {'absolute tolerance': 1e-6},
                   'new': {},
                   'give-up-always': ALWAYS,
