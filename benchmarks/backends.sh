@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Kokkos backends against MPI ranks (issue 18, item 3), in one run on a quiet machine: the project built against
+# Kokkos backends against MPI ranks, in one run on a quiet machine: the project built against
 # Debian's Serial Trilinos (build/) and against the OpenMP Trilinos of scripts/build-trilinos.sh (build-openmp/), in
 # four configurations: Serial 1 rank, Serial 2 ranks, OpenMP 1 rank with 1 thread, OpenMP 1 rank with 2 threads.
 #

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""What moves the first instability of the peel by rotation (issue 16, item 4).
+"""What moves the first instability of the peel by rotation.
 
 Ours comes at theta_y = 32.2 deg on the medium mesh, the paper's at 31 deg, and our Pi_sa at 30 deg is twice the
 paper's. Each variant below is the frictionless Q1C2 rotation from theta_s to 36 deg with one thing changed from the

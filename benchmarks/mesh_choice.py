@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The measured table behind 'Mesh/level' = auto (issue 16, item 6): error against the fine level for each candidate mesh.
+"""The measured table behind 'Mesh/level' = auto: error against the fine level for each candidate mesh.
 
 Every candidate runs the scene of the fine level's pull-off at 60 deg (results/fine/pull-off-60: frictionless
 Q1C2, rotation to 60 deg with zero net force, then up to 600 nm of lift; rotation steps up to 2 deg, lift steps up to

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Time per Newton iteration on the medium mesh: ours with MUMPS' freed workspace returned to the kernel at every
-factorization (`Linear Solver/MUMPS/keep workspace` = false, the code before issue 15) against ours keeping it
+factorization (`Linear Solver/MUMPS/keep workspace` = false, the code before the solver work) against ours keeping it
 (the default), and against the FEniCSx peer of ../shared/peers (when Debian's python3-dolfinx is installed).
 
 The scene is the peer's comparison scene (../shared/peers/README.md): xml/pull-off-medium.xml with no pre-rotation

@@ -1,4 +1,4 @@
-// Atomics against colouring for the bulk solid's scatter (issue 18): the spatula's Hex8 elements on a level's mesh,
+// Atomics against colouring for the bulk solid's scatter: the spatula's Hex8 elements on a level's mesh,
 // each evaluated by the solid element kernel (elements/solid_element.hpp, as discretization/solid_kernel.hpp does) and
 // added into a KokkosSparse matrix and a residual View in one of two ways:
 //   atomic:   one launch over all elements, every add atomic (sumIntoValues with force_atomic, atomic_add), as the

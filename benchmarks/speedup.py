@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 15's outcome, old against new in one run of this script: writes docs/speedup.csv
+"""The solver work's outcome, old against new in one run of this script: writes docs/speedup.csv
 (case,before_s,after_s,ratio,max_result_change_pct, plus what each case counted) and prints the table for
 docs/performance.md.
 
@@ -34,7 +34,7 @@ iterations' = 0; 'after' is the current defaults):
                           after scene's settings and Loading/Jump/refactor = cost (a fine factorization is dear):
                           rotation to 60 deg with zero net force (checkpoints at 30, 45 and
                           60 deg for later pull-offs), then 600 nm of lift, to detachment. No before: the code before
-                          issue 15 never finished it. Hours long: it checkpoints every 5 minutes, and a later call of
+                          the code before it never finished it. Hours long: it checkpoints every 5 minutes, and a later call of
                           the case goes on from the last checkpoint (--resume). Its wall time is the sum over the
                           segments (a segment a session killed counts to its last logged step); its row is written
                           once the run has finished, with P_max, Delta u_z and Delta Pi_ext.
@@ -271,7 +271,7 @@ def fine_pull_off_60(work):
     print(f'{FINE_60}: {sum(seconds):.0f} s in {len(seconds)} segment(s), P_max {summary["P_max_nN"]:.4f} nN',
           flush=True)
     return [dict(case='fine-pull-off-60', before_s='', after_s=round(sum(seconds), 1), ratio='',
-                 max_result_change_pct='', before_counts='never finished before issue 15',
+                 max_result_change_pct='', before_counts='never finished before the solver work',
                  after_counts=f'2 ranks, wall in {len(seconds)} segment(s) '
                               f'({" + ".join(f"{s:.0f}" for s in seconds)} s), last segment '
                               f'{solver.group(1) if solver else "?"} tangents, P_max {summary["P_max_nN"]:.4f} nN, '

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Newton's give-up rule and convergence norms on whole pull-offs, old against new in one run (issue 15, parts 0-1a).
+"""Newton's give-up rule and convergence norms on whole pull-offs, old against new in one run.
 
 Each configuration is the coarse frictionless Q1C2 pull-off (rotation to theta_y with zero net force, then a lift of
 600 nm beyond it) with one Nonlinear Solver setting changed from the base (the rule as it was: a load step fails only

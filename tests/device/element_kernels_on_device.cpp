@@ -1,4 +1,4 @@
-// The laws and element kernels on a GPU backend (issue 18, item 4): every function a kernel reaches is compiled for
+// The laws and element kernels on a GPU backend: every function a kernel reaches is compiled for
 // the device and run there on a batch of perturbed elements, and the device's energies, residuals and tangents are
 // compared with the host's (the same functions called on the host). Built by scripts/check-device-kernels.sh with
 // nvcc against a CUDA-enabled Kokkos; where the machine has no GPU it stops after compiling and linking, says so and
