@@ -94,6 +94,11 @@ VARIANTS = {
          [('Nonlinear Solver/Front Elimination/use', 'after the full step', 'string')]),
         ('soft-mode-line-search', False, [('Nonlinear Solver/Front Elimination/use', 'soft mode', 'string')]),
         ('contact-quadrature-8', False, [('Adhesion/quadrature', 8, 'int')]),
+        # the front's cost against the step: half and twice the 0.9 deg steps over the same 9 deg
+        ('rotation-steps-0.45', False, [('Loading/Rotation Steps/initial', 0.45, 'double'),
+                                        ('Loading/Rotation Steps/maximum', 0.45, 'double')]),
+        ('rotation-steps-1.8', False, [('Loading/Rotation Steps/initial', 1.8, 'double'),
+                                       ('Loading/Rotation Steps/maximum', 1.8, 'double')]),
     ],
     'coarse-rotation-to-40': [
         ('default', False, []),
