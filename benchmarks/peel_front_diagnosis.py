@@ -21,7 +21,7 @@ full steps along which the energy rises over a barrier, and those of them whose 
 crossing points' adhesion energy. Writes docs/peel-front-diagnosis.csv and prints the table for
 docs/performance.md.
 
-usage: benchmarks/peel_front_diagnosis.py [--work DIR] [--only CASE] [--variant NAME]   (about 9 minutes; needs a build)
+usage: benchmarks/peel_front_diagnosis.py [--work DIR] [--only CASE] [--variant NAME]   (about 15 minutes; needs a build)
 --only and --variant run a part and replace its rows of the csv.
 """
 import argparse
