@@ -8,8 +8,10 @@ never a hang, never a silently wrong curve (the energy balance error is checked 
 Cases (coarse mesh, Q1C2, pull-off at 60 deg unless said): gamma_W / gamma_W0 = 1.5^-2 .. 1.5^3, gamma_L / gamma_L0 =
 1.5^-3 .. 1.5^2, rough substrate z0 = 8 and 10 nm (rotation to 45 deg), step-size maxima x4, Q1C1 (rotation to
 140 deg and pull-off). With --docs the outcome matrix goes to docs/stability.md (the page's text is the template
-docs/stability-notes.md). The same script with --only runs single cases (CI runs one cheap one). Outcomes are kept
-in <work>/outcomes.json; a case already there is not run again unless --again is given.
+docs/stability-notes.md). The same script with --only runs single cases. Outcomes are kept in <work>/outcomes.json;
+a case already there is not run again unless --again is given. `--check NAME` (CI) runs one case afresh and compares
+it with its row in docs/stability.md: the same outcome, P_max and the last state's u_z within 1 %, and the energy
+balance within the paper's 2e-3 Pi_c0 at every state; exit 1 with the differences otherwise.
 """
 import argparse
 import csv
@@ -136,6 +138,34 @@ def markdown(rows):
     return '\n'.join(lines)
 
 
+def recorded_row(description):
+    """The row of docs/stability.md for the case with this description: outcome, P_max, the last state's u_z."""
+    for line in open(os.path.join(ROOT, 'docs', 'stability.md')):
+        cells = [c.strip() for c in line.strip().strip('|').split('|')]
+        if len(cells) == 9 and cells[0] == description:
+            return {'outcome': cells[1], 'P_max': float(cells[5]), 'u_z': float(cells[4].split('u_z')[1].split()[0])}
+    sys.exit(f'no row for "{description}" in docs/stability.md')
+
+
+def check(case, work, time_limit):
+    """Runs one case afresh and returns the list of its differences from docs/stability.md (empty: it agrees)."""
+    name, description, _ = case
+    recorded = recorded_row(description)
+    row = run(work, [case], 1, time_limit)[0]
+    u_z = float(row['last'].split('u_z')[1].split()[0]) if row['last'] != '-' else float('nan')
+    print(f'{name}: {row["outcome"]}; P_max {row["P_max"]:.3f} nN (recorded {recorded["P_max"]}), last u_z '
+          f'{u_z:.1f} nm (recorded {recorded["u_z"]:g}), worst balance {row["balance"]:.1e}')
+    differences = []
+    if row['outcome'].split(':')[0] != recorded['outcome'].split(':')[0]:
+        differences.append(f'outcome "{row["outcome"]}", recorded "{recorded["outcome"]}"')
+    for key, value in (('P_max', row['P_max']), ('u_z', u_z)):
+        if not abs(value - recorded[key]) <= 0.01 * abs(recorded[key]):
+            differences.append(f'{key} {value:.4g}, recorded {recorded[key]:g} (more than 1 % apart)')
+    if not row['balance'] <= BALANCE_LIMIT:
+        differences.append(f'energy balance error {row["balance"]:.1e} > {BALANCE_LIMIT:g}')
+    return differences
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument('--jobs', type=int, default=2)
@@ -145,14 +175,20 @@ def main():
     parser.add_argument('--again', action='store_true', help='run the selected cases even if they have an outcome')
     parser.add_argument('--docs', action='store_true', help='write docs/stability.md')
     parser.add_argument('--no-run', action='store_true', help='only tabulate the outcomes already stored')
+    parser.add_argument('--check', metavar='NAME', help='run one case afresh and compare it with docs/stability.md')
     arguments = parser.parse_args()
     if not os.path.exists(APP):
         sys.exit(f'{APP} not found: build first (bash scripts/build.sh)')
     everything = cases()
     names = [c[0] for c in everything]
-    for name in arguments.only or []:
+    for name in (arguments.only or []) + ([arguments.check] if arguments.check else []):
         if name not in names:
             sys.exit(f'unknown case "{name}"; cases: {", ".join(names)}')
+    if arguments.check:
+        differences = check(next(c for c in everything if c[0] == arguments.check), arguments.work, arguments.time_limit)
+        for difference in differences:
+            print('DIFFERS: ' + difference)
+        return 1 if differences else 0
     selected = [c for c in everything if not arguments.only or c[0] in arguments.only]
     started = time.time()
     stored = os.path.join(arguments.work, 'outcomes.json')

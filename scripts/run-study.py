@@ -53,6 +53,7 @@ from study.figures import field_pictures, plots  # noqa: E402
 from study.runner import APP, run_all  # noqa: E402
 from study.runs import complete  # noqa: E402
 from study.scenes import DEPENDS, OVERRIDES, STUDIES, parse_override, planned_runs  # noqa: E402
+from study.glance import glance  # noqa: E402
 from study.tables import error_bars, write_tables  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -132,7 +133,7 @@ def main():
         pictures += field_pictures([results[level][0] for level in reversed(LEVELS) if level in results], docs)
         template = open(os.path.join(ROOT, 'docs', 'validation-notes.md')).read()
         with open(os.path.join(docs, 'validation.md'), 'w') as out:
-            out.write(template.replace('{{TABLES}}', text).replace(
+            out.write(template.replace('{{GLANCE}}', glance(results)).replace('{{TABLES}}', text).replace(
                 '{{FIGURES}}', '\n\n'.join(f'{caption}:\n\n![{caption}]({name})' for name, caption in pictures)))
         print('wrote docs/validation.md')
     return 1 if failed else 0

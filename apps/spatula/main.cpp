@@ -1,11 +1,12 @@
 // spatula: the gecko spatula adhesion program.
 //
-//   spatula [scene.xml] [--resume] [--validate-only] [--print-parameters]
+//   spatula [options] [scene.xml]        (command_line.cpp: the options)
 //
 // Without a file it runs the embedded default scene (xml/default.xml). Every input is validated before anything
 // is computed or written; input errors name the key, the value and what is allowed (exit code 2).
 #include "checkpoint.hpp"
 #include "collective.hpp"
+#include "command_line.hpp"
 #include "default_scene.hpp"
 #include "interruption.hpp"
 #include "output_checks.hpp"
@@ -40,41 +41,6 @@ namespace {
 
 constexpr double pi = 3.14159265358979323846;
 
-struct Options {
-  std::string scene_file;
-  bool validate_only = false;
-  bool print_parameters = false;
-  bool resume = false;
-};
-
-const char* usage =
-    "usage: spatula [scene.xml] [--resume] [--validate-only] [--print-parameters]\n"
-    "  scene.xml           Teuchos XML parameter list (default: the embedded scene xml/default.xml)\n"
-    "  --resume            go on with the stopped run of this scene (killed, interrupted or failed) from the last\n"
-    "                      state it checkpointed (Output/checkpoint interval), in the same Output/directory\n"
-    "  --validate-only     check the scene and exit\n"
-    "  --print-parameters  print every valid key with its default and documentation\n";
-
-Options parse(int argc, char** argv)
-{
-  Options options;
-  for (int i = 1; i < argc; ++i) {
-    const std::string argument = argv[i];
-    if (argument == "--validate-only") options.validate_only = true;
-    else if (argument == "--print-parameters") options.print_parameters = true;
-    else if (argument == "--resume") options.resume = true;
-    else if (argument == "--help" || argument == "-h") {
-      std::cout << usage;
-      std::exit(0);
-    } else if (!argument.empty() && argument[0] == '-')
-      throw spatula::parameters::InputError("unknown option '" + argument + "'\n" + usage);
-    else if (options.scene_file.empty()) options.scene_file = argument;
-    else throw spatula::parameters::InputError("more than one scene file given ('" + options.scene_file + "', '" +
-                                               argument + "')\n" + usage);
-  }
-  return options;
-}
-
 void write_summary_files(const spatula::io::OutputDirectory& directory, const spatula::mesh::MeshSummary& summary,
                          const spatula::geometry::SpatulaShape& shape, const std::string& mesh_choice)
 {
@@ -103,7 +69,7 @@ struct Checked {
 // Reads and checks the scene, the output directory, the mesh against the memory and the ranks, the restart file,
 // the free space for the output: before anything is written, each check ending on every rank together (an
 // InputError on all if one fails). A run (not --validate-only) then takes the output directory's lock (rank 0).
-Checked check_everything(const Options& options, const Teuchos::Comm<int>& comm, std::unique_ptr<spatula::io::RunLock>& lock)
+Checked check_everything(const spatula::app::CommandLine& options, const Teuchos::Comm<int>& comm, std::unique_ptr<spatula::io::RunLock>& lock)
 {
   using namespace spatula;
   Checked run;
@@ -270,7 +236,9 @@ int main(int argc, char** argv)
     return 2;
   }
   Teuchos::GlobalMPISession mpi_session(&argc, &argv, nullptr);
-  Tpetra::ScopeGuard kokkos_scope(&argc, &argv);   // Kokkos starts here, not lazily at the first Tpetra::Map
+  const app::CommandLine options = app::parse_command_line(argc, argv);
+  app::KokkosArguments kokkos_arguments(options.kokkos_arguments);   // Kokkos sees its own options only
+  Tpetra::ScopeGuard kokkos_scope(&kokkos_arguments.argc, &kokkos_arguments.argv);   // (not lazily at the first Map)
   const auto comm = Teuchos::DefaultComm<int>::getComm();
   const bool root = comm->getRank() == 0;
   std::ostream& out = std::cout;
@@ -299,7 +267,12 @@ int main(int argc, char** argv)
   };
 
   try {
-    const Options options = parse(argc, argv);
+    if (!options.error.empty()) throw parameters::InputError(options.error + "\n" + app::usage());
+    if (options.help || options.version || options.kokkos_help) {   // (Kokkos has printed its help)
+      if (root && options.help) out << app::usage();
+      if (root && options.version) out << app::version_text();
+      return 0;
+    }
     if (options.print_parameters) {
       if (root) app::valid_scene_parameters().print(out, Teuchos::ParameterList::PrintOptions().showDoc(true).indent(2).showTypes(true));
       return 0;

@@ -1,16 +1,12 @@
 #include "solvers/newton.hpp"
 
 #include "parameters/parameter_validation.hpp"
-#include "solvers/energy_line_search.hpp"
-#include "solvers/front_diagnosis.hpp"
+#include "solvers/attempt_tests.hpp"
+#include "solvers/convergence_table.hpp"
+#include "solvers/nox_energy_line_search.hpp"
 
-#include <NOX_LineSearch_Backtrack.H>
-#include <NOX_LineSearch_Generic.H>
-#include <NOX_LineSearch_UserDefinedFactory.H>
-#include <NOX_Observer.hpp>
 #include <NOX_Solver_Factory.H>
 #include <NOX_Solver_Generic.H>
-#include <NOX_Solver_LineSearchBased.H>
 #include <NOX_StatusTest_Combo.H>
 #include <NOX_StatusTest_FiniteValue.H>
 #include <NOX_StatusTest_MaxIters.H>
@@ -21,10 +17,7 @@
 #include <Teuchos_TimeMonitor.hpp>
 #include <Thyra_TpetraThyraWrappers.hpp>
 
-#include <chrono>
 #include <cmath>
-#include <functional>
-#include <iomanip>
 #include <ostream>
 #include <string>
 
@@ -141,251 +134,93 @@ NewtonParameters NewtonParameters::from(const Teuchos::ParameterList& list)
 
 namespace {
 
-// Records one row of the convergence table per Newton iteration; with `model` (a system with contact), a line under
-// it on the contact points the iteration's full step carries across the law's inflection and the energy along that
-// step (front_diagnosis.hpp).
-class TableObserver : public NOX::Observer {
-public:
-  TableObserver(NewtonResult& result, const LinearSolverFactory& linear, std::ostream* table,
-                const SpatulaModel* diagnosed)
-      : result_(result), linear_(linear), table_(table), diagnosed_(diagnosed), start_(std::chrono::steady_clock::now())
-  {
-  }
-
-  void runPreSolve(const NOX::Solver::Generic& solver) override
-  {
-    result_.initial_residual_norm = solver.getSolutionGroup().getNormF();
-    if (table_)
-      *table_ << "    newton    |f| [nN]     |dx|_inf      step   neg.piv   time [s]   slope ratio\n"
-              << "    " << std::setw(6) << 0 << "  " << std::scientific << std::setprecision(3)
-              << result_.initial_residual_norm << std::defaultfloat << "\n";
-  }
-
-  void runPostIterate(const NOX::Solver::Generic& solver) override
-  {
-    NewtonIteration row;
-    row.iteration = solver.getNumIterations();
-    const auto& current = solver.getSolutionGroup();
-    row.residual_norm = current.getNormF();
-    auto update = current.getX().clone(NOX::DeepCopy);
-    update->update(-1.0, solver.getPreviousSolutionGroup().getX(), 1.0);
-    row.update_norm = update->norm(NOX::Abstract::Vector::MaxNorm);
-    const double slope_before = solver.getPreviousSolutionGroup().getF().innerProduct(*update);
-    if (slope_before != 0.0) row.slope_ratio = current.getF().innerProduct(*update) / slope_before;
-    if (const auto* line_search = dynamic_cast<const NOX::Solver::LineSearchBased*>(&solver))
-      row.step = line_search->getStepSize();
-    row.negative_pivots = linear_.mumps_statistics().negative_pivots;
-    row.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    result_.iterations.push_back(row);
-    if (table_ && result_.elimination.applications > applications_) {
-      applications_ = result_.elimination.applications;
-      *table_ << "      front: " << result_.elimination.last_nodes << " nodes relaxed, |f| there x "
-              << std::setprecision(3) << result_.elimination.last_reduction << " (" << result_.elimination.local_iterations
-              << " local iterations so far)\n";
-    }
-    if (table_)
-      *table_ << "    " << std::setw(6) << row.iteration << "  " << std::scientific << std::setprecision(3)
-              << row.residual_norm << "  " << row.update_norm << "  " << std::defaultfloat << std::setprecision(3)
-              << std::setw(6) << row.step << "  " << std::setw(7) << row.negative_pivots << "  " << std::setw(8)
-              << row.seconds << "  " << std::setw(10) << row.slope_ratio << "\n";
-    if (table_ && diagnosed_ && row.step > 0.0) *table_ << front_line(full_step(solver, row.step));
-  }
-
-private:
-  // The diagnosis of the iteration's full Newton step: from the previous state along (x - previous) / step.
-  FrontDiagnosis full_step(const NOX::Solver::Generic& solver, double step) const
-  {
-    const auto tpetra = [](const NOX::Abstract::Vector& v) {
-      return Extract::getConstTpetraVector(dynamic_cast<const NOX::Thyra::Vector&>(v).getThyraRCPVector());
-    };
-    const auto previous = tpetra(solver.getPreviousSolutionGroup().getX());
-    const auto current = tpetra(solver.getSolutionGroup().getX());
-    discretization::Vector full(previous->getMap());
-    full.update(1.0 - 1.0 / step, *previous, 1.0 / step, *current, 0.0);
-    return diagnose_front(*diagnosed_, *previous, full);
-  }
-
-  NewtonResult& result_;
-  const LinearSolverFactory& linear_;
-  std::ostream* table_;
-  const SpatulaModel* diagnosed_;
-  std::chrono::steady_clock::time_point start_;
-  int applications_ = 0;
+// The tests that end one attempt: converged (|f| below the absolute or relative tolerance and |dx| below its
+// tolerance), the iteration limit, a non-finite value, and the give-up rules (after a failed step, or always).
+struct Tests {
+  Teuchos::RCP<NOX::StatusTest::Combo> all;
+  Teuchos::RCP<NOX::StatusTest::Generic> short_steps;   // (null: the rule is off)
+  bool give_up = false;
 };
 
-// Gives up on a Newton attempt once `limit` iterations in a row met its rule while |f| was still above `far` times
-// the residual the attempt started from. Two rules: hopeless (|f| left above `contraction` times its value before)
-// and short steps (the line search cut the step to at most `short step`: Newton's direction does not lower |f|).
-// The far condition spares the slow last iterations of a converging attempt (a nearly singular tangent at a peel
-// front converges linearly, many orders below where it began); near a fold a hopeless attempt stays near its start.
-class GiveUp : public NOX::StatusTest::Generic {
-public:
-  // Whether an iteration counts, from |f| now, |f| before and the line-search step (1 without a line search).
-  using Rule = std::function<bool(double now, double before, double step)>;
-  // An iteration counts while |f| >= far |f_0| and |f| >= floor.
-  GiveUp(std::string description, int limit, double far, double floor, Rule rule)
-      : description_(std::move(description)), limit_(limit), far_(far), floor_(floor), rule_(std::move(rule))
-  {
+Tests attempt_tests(const NewtonParameters& parameters, NOX::Abstract::Group& start, bool after_failure)
+{
+  using namespace NOX::StatusTest;
+  const auto scale = parameters.scaled_norms ? NormF::Scaled : NormF::Unscaled;
+  auto absolute = Teuchos::rcp(new NormF(parameters.absolute_tolerance, scale));
+  auto relative = Teuchos::rcp(new NormF(start, parameters.relative_tolerance, scale));
+  auto residual = Teuchos::rcp(new Combo(Combo::OR, absolute, relative));
+  auto update = Teuchos::rcp(new NormUpdate(parameters.update_tolerance, NOX::Abstract::Vector::MaxNorm,
+                                            parameters.scaled_norms ? NormUpdate::Scaled : NormUpdate::Unscaled));
+  Tests tests;
+  tests.all = Teuchos::rcp(new Combo(Combo::OR));
+  tests.all->addStatusTest(Teuchos::rcp(new Combo(Combo::AND, residual, update)));
+  tests.all->addStatusTest(
+      iteration_limit_test(parameters.maximum_iterations, parameters.converging_extension, parameters.contraction));
+  tests.all->addStatusTest(Teuchos::rcp(new FiniteValue));
+  constexpr double hopeless_above = 1e-3;   // of the attempt's first |f|: below it an attempt is converging
+  // ... as it is below a few times the absolute tolerance, in |f|_2 (NOX's scaled test is |f|_2 / sqrt(n))
+  const double floor = parameters.give_up_above_tolerance * parameters.absolute_tolerance *
+                       (parameters.scaled_norms ? std::sqrt(double(start.getF().length())) : 1.0);
+  tests.give_up = parameters.non_contracting_iterations > 0 && (after_failure || !parameters.give_up_only_after_failure);
+  if (tests.give_up)   // far from a solution (past a fold): give up early
+    tests.all->addStatusTest(give_up_test(
+        "hopeless attempt (|f| not shrinking)", parameters.non_contracting_iterations, hopeless_above, floor,
+        [contraction = parameters.contraction](double now, double before, double) {
+          return now >= contraction * before;
+        }));
+  if (parameters.short_steps > 0) {
+    tests.short_steps = give_up_test("short line-search steps", parameters.short_steps, hopeless_above, floor,
+                                     [short_step = parameters.short_step](double, double, double step) {
+                                       return step <= short_step;
+                                     });
+    tests.all->addStatusTest(tests.short_steps);
   }
+  return tests;
+}
 
-  NOX::StatusTest::StatusType checkStatus(const NOX::Solver::Generic& solver, NOX::StatusTest::CheckType) override
-  {
-    const int iteration = solver.getNumIterations();
-    if (iteration == 0) {   // a new attempt
-      start_ = solver.getSolutionGroup().getNormF();
-      count_ = last_ = 0;
-      status_ = NOX::StatusTest::Unconverged;
-      return status_;
-    }
-    if (iteration == last_) return status_;   // asked twice in one iteration
-    last_ = iteration;
-    const double now = solver.getSolutionGroup().getNormF(), before = solver.getPreviousSolutionGroup().getNormF();
-    const auto* line_search = dynamic_cast<const NOX::Solver::LineSearchBased*>(&solver);
-    const double step = line_search ? line_search->getStepSize() : 1.0;
-    count_ = now >= far_ * start_ && now >= floor_ && rule_(now, before, step) ? count_ + 1 : 0;
-    status_ = count_ >= limit_ ? NOX::StatusTest::Failed : NOX::StatusTest::Unconverged;
-    return status_;
+// NOX's parameters: line-search Newton with the chosen line search (ours: the energy's), the front's elimination
+// where asked, the linear tolerance (fixed or Eisenstat-Walker's), and the convergence table as its observer.
+Teuchos::RCP<Teuchos::ParameterList> nox_parameters(const NewtonParameters& parameters, const LinearSolverFactory& linear,
+                                                    SpatulaModel& model, NewtonResult& result, std::ostream* table)
+{
+  auto list = Teuchos::rcp(new Teuchos::ParameterList("NOX"));
+  list->set("Nonlinear Solver", "Line Search Based");
+  static const char* const nox_methods[] = {"Backtrack", "Polynomial", "Full Step", "User Defined"};   // LineSearch's
+  const std::string method = nox_methods[static_cast<int>(parameters.line_search)];
+  auto& line_search = list->sublist("Line Search");
+  line_search.set("Method", method);
+  if (parameters.line_search == LineSearch::energy)
+    line_search.set<Teuchos::RCP<NOX::LineSearch::UserDefinedFactory>>(
+        "User Defined Line Search Factory", energy_line_search_factory(model, parameters.elimination, result.elimination));
+  // When no step reduces |f|, NOX takes its recovery step (a full step); adhesion problems often need it (|f| is
+  // not monotone along good Newton steps). A non-finite or inverted result is caught by the model instead.
+  for (const char* kind : {"Backtrack", "Polynomial"}) {
+    auto& sub = line_search.sublist(kind);
+    sub.set("Max Iters", 12);
+    sub.set("Minimum Step", 1e-4);
   }
-  NOX::StatusTest::StatusType getStatus() const override { return status_; }
-  std::ostream& print(std::ostream& stream, int indent) const override
-  {
-    return stream << std::string(indent, ' ') << status_ << " " << description_ << ": " << count_ << " of " << limit_
-                  << " iterations in a row\n";
+  list->sublist("Direction").set("Method", "Newton");
+  if (parameters.elimination.use == EliminationUse::before_direction ||
+      parameters.elimination.use == EliminationUse::soft_mode) {
+    list->sublist("Direction").set("Method", "User Defined");
+    list->sublist("Direction").set<Teuchos::RCP<NOX::Direction::UserDefinedFactory>>(
+        "User Defined Direction Factory",
+        Teuchos::rcp(new FrontEliminationFactory(model, parameters.elimination, result.elimination)));
   }
-
-private:
-  std::string description_;
-  int limit_;
-  double far_, floor_;
-  Rule rule_;
-  double start_ = 0.0;
-  int count_ = 0, last_ = 0;
-  NOX::StatusTest::StatusType status_ = NOX::StatusTest::Unconverged;
-};
-
-// The iteration limit of an attempt, spared while it converges: at `limit` iterations an attempt fails unless each of
-// its last two iterations cut |f| to `contraction` of its value before or less; such an attempt goes on, at most
-// `extension` iterations more. At the medium peel front an attempt often needs 13-14 iterations, the last few
-// converging fast: failing it at 12 threw its iterations away and the cut increments that followed bisected towards a
-// load that was no limit point (docs/performance.md, "The peel front").
-class IterationLimit : public NOX::StatusTest::Generic {
-public:
-  IterationLimit(int limit, int extension, double contraction)
-      : limit_(limit), extension_(extension), contraction_(contraction)
-  {
+  auto& newton = list->sublist("Direction").sublist("Newton");
+  newton.sublist("Linear Solver").set("Tolerance", linear.parameters().tolerance);
+  if (parameters.inexact) {   // NOX sets the linear tolerance of every iteration from the last contraction
+    newton.set("Forcing Term Method", "Type 2");
+    newton.set("Forcing Term Initial Tolerance", 1e-4);
+    newton.set("Forcing Term Minimum Tolerance", linear.parameters().tolerance);
+    newton.set("Forcing Term Maximum Tolerance", 0.01);
   }
-  NOX::StatusTest::StatusType checkStatus(const NOX::Solver::Generic& solver, NOX::StatusTest::CheckType) override
-  {
-    const int iteration = solver.getNumIterations();
-    if (iteration == 0) {
-      older_ratio_ = 1.0;
-      last_ = 0;
-      status_ = NOX::StatusTest::Unconverged;
-      return status_;
-    }
-    if (iteration == last_) return status_;   // asked twice in one iteration
-    last_ = iteration;
-    const double before = solver.getPreviousSolutionGroup().getNormF();
-    const double ratio = before > 0.0 ? solver.getSolutionGroup().getNormF() / before : 1.0;
-    const bool converging = ratio <= contraction_ && older_ratio_ <= contraction_;
-    older_ratio_ = ratio;
-    const bool spent = iteration >= limit_ + extension_ || (iteration >= limit_ && !converging);
-    status_ = spent ? NOX::StatusTest::Failed : NOX::StatusTest::Unconverged;
-    return status_;
-  }
-  NOX::StatusTest::StatusType getStatus() const override { return status_; }
-  std::ostream& print(std::ostream& stream, int indent) const override
-  {
-    return stream << std::string(indent, ' ') << status_ << " iteration limit " << limit_ << " (+" << extension_
-                  << " while converging)\n";
-  }
-
-private:
-  int limit_, extension_;
-  double contraction_;
-  double older_ratio_ = 1.0;
-  int last_ = 0;
-  NOX::StatusTest::StatusType status_ = NOX::StatusTest::Unconverged;
-};
-
-// The energy line search as NOX calls it: the direction d from the previous group, phi'(alpha) = f(x + alpha d) . d,
-// the energy Pi_int + Pi_c of the model's evaluation of that residual (the model's last evaluation on entry is the
-// tangent's, at x). Where d does not lower the energy (phi'(0) >= 0: an indefinite tangent past a fold) or no
-// admissible point was found, NOX's backtracking on |f| takes the step.
-class EnergyLineSearch : public NOX::LineSearch::Generic {
-public:
-  EnergyLineSearch(const SpatulaModel& model, Teuchos::RCP<NOX::LineSearch::Generic> fallback,
-                   const FrontEliminationParameters& elimination, EliminationCounts& counts)
-      : model_(model), fallback_(std::move(fallback)), elimination_(elimination), counts_(counts)
-  {
-  }
-
-  bool compute(NOX::Abstract::Group& group, double& step, const NOX::Abstract::Vector& direction,
-               const NOX::Solver::Generic& solver) override
-  {
-    const auto& previous = solver.getPreviousSolutionGroup();
-    const LinePoint origin{0.0, previous.getF().innerProduct(direction), model_.last_evaluation().energy(), true};
-    if (!(origin.slope < 0.0)) return fallback_->compute(group, step, direction, solver);
-    double evaluated = 0.0;
-    const auto evaluate = [&](double alpha) {
-      group.computeX(previous, direction, alpha);
-      group.computeF();
-      evaluated = alpha;
-      const auto& evaluation = model_.last_evaluation();
-      return LinePoint{alpha, evaluation.admissible ? group.getF().innerProduct(direction) : 0.0,
-                       evaluation.energy(), evaluation.admissible};
-    };
-    if (elimination_.use == EliminationUse::after_full_step) {
-      const LinePoint full = evaluate(1.0);
-      const bool past = !full.admissible || full.slope > 0.0 || full.energy > origin.energy;
-      if (past && full.admissible) {   // relax the nodes the full step carried too far, from the full step
-        const auto& thyra_x = dynamic_cast<const NOX::Thyra::Vector&>(group.getX());
-        const auto& thyra_f = dynamic_cast<const NOX::Thyra::Vector&>(group.getF());
-        auto x = Teuchos::rcp(
-            new discretization::Vector(*Extract::getConstTpetraVector(thyra_x.getThyraRCPVector()), Teuchos::Copy));
-        discretization::Vector f(*Extract::getConstTpetraVector(thyra_f.getThyraRCPVector()), Teuchos::Copy);
-        if (relax_front(model_, *x, f, elimination_, counts_) && model_.last_evaluation().admissible &&
-            model_.last_evaluation().energy() < origin.energy) {
-          group.setX(NOX::Thyra::Vector(Thyra::createVector(x, thyra_x.getThyraRCPVector()->space())));
-          group.computeF();
-          step = 1.0;
-          return true;
-        }
-      }
-    }
-    const LinePoint chosen = search_energy_line(evaluate, origin, EnergyLineSearchParameters{});
-    if (!chosen.admissible) return fallback_->compute(group, step, direction, solver);
-    if (chosen.step != evaluated) evaluate(chosen.step);
-    step = chosen.step;
-    return true;
-  }
-
-private:
-  const SpatulaModel& model_;
-  Teuchos::RCP<NOX::LineSearch::Generic> fallback_;
-  FrontEliminationParameters elimination_;
-  EliminationCounts& counts_;
-};
-
-class EnergyLineSearchFactory : public NOX::LineSearch::UserDefinedFactory {
-public:
-  EnergyLineSearchFactory(const SpatulaModel& model, const FrontEliminationParameters& elimination,
-                          EliminationCounts& counts)
-      : model_(model), elimination_(elimination), counts_(counts)
-  {
-  }
-  Teuchos::RCP<NOX::LineSearch::Generic> buildLineSearch(const Teuchos::RCP<NOX::GlobalData>& data,
-                                                         Teuchos::ParameterList& list) const override
-  {
-    return Teuchos::rcp(new EnergyLineSearch(model_, Teuchos::rcp(new NOX::LineSearch::Backtrack(data, list)),
-                                             elimination_, counts_));
-  }
-
-private:
-  const SpatulaModel& model_;
-  FrontEliminationParameters elimination_;
-  EliminationCounts& counts_;
-};
+  list->sublist("Printing").set("Output Information", 0);
+  list->sublist("Solver Options").set<Teuchos::RCP<NOX::Observer>>(
+      "Observer", convergence_table(result, linear, table,
+                                    parameters.front_diagnosis && model.system().contact_area() > 0.0 ? &model : nullptr));
+  return list;
+}
 
 }  // namespace
 
@@ -404,80 +239,11 @@ NewtonResult NewtonSolver::solve(discretization::Vector& x, std::ostream* table,
   NOX::Thyra::Vector initial_guess(Thyra::createVector(start, space));
   auto group = Teuchos::rcp(new NOX::Thyra::Group(initial_guess, model_));
 
-  using namespace NOX::StatusTest;
-  const auto scale = parameters_.scaled_norms ? NormF::Scaled : NormF::Unscaled;
-  auto absolute = Teuchos::rcp(new NormF(parameters_.absolute_tolerance, scale));
   group->computeF();
-  auto relative = Teuchos::rcp(new NormF(*group, parameters_.relative_tolerance, scale));
-  auto residual = Teuchos::rcp(new Combo(Combo::OR, absolute, relative));
-  auto update = Teuchos::rcp(new NormUpdate(parameters_.update_tolerance, NOX::Abstract::Vector::MaxNorm,
-                                            parameters_.scaled_norms ? NormUpdate::Scaled : NormUpdate::Unscaled));
-  auto converged = Teuchos::rcp(new Combo(Combo::AND, residual, update));
-  auto tests = Teuchos::rcp(new Combo(Combo::OR));
-  tests->addStatusTest(converged);
-  tests->addStatusTest(Teuchos::rcp(
-      new IterationLimit(parameters_.maximum_iterations, parameters_.converging_extension, parameters_.contraction)));
-  tests->addStatusTest(Teuchos::rcp(new FiniteValue));
-  constexpr double hopeless_above = 1e-3;   // of the attempt's first |f|: below it an attempt is converging
-  // ... as it is below a few times the absolute tolerance, in |f|_2 (NOX's scaled test is |f|_2 / sqrt(n))
-  const double floor = parameters_.give_up_above_tolerance * parameters_.absolute_tolerance *
-                       (parameters_.scaled_norms ? std::sqrt(double(group->getF().length())) : 1.0);
-  const bool give_up = parameters_.non_contracting_iterations > 0 &&
-                       (after_failure || !parameters_.give_up_only_after_failure);
-  if (give_up)   // far from a solution (past a fold): give up early
-    tests->addStatusTest(Teuchos::rcp(new GiveUp(
-        "hopeless attempt (|f| not shrinking)", parameters_.non_contracting_iterations, hopeless_above, floor,
-        [contraction = parameters_.contraction](double now, double before, double) {
-          return now >= contraction * before;
-        })));
-  Teuchos::RCP<GiveUp> short_steps;
-  if (parameters_.short_steps > 0) {
-    short_steps = Teuchos::rcp(new GiveUp("short line-search steps", parameters_.short_steps, hopeless_above, floor,
-                                          [short_step = parameters_.short_step](double, double, double step) {
-                                            return step <= short_step;
-                                          }));
-    tests->addStatusTest(short_steps);
-  }
+  const Tests tests = attempt_tests(parameters_, *group, after_failure);
+  const auto list = nox_parameters(parameters_, linear_solver_, *model_, result, table);
 
-  auto list = Teuchos::rcp(new Teuchos::ParameterList("NOX"));
-  list->set("Nonlinear Solver", "Line Search Based");
-  static const char* const nox_methods[] = {"Backtrack", "Polynomial", "Full Step", "User Defined"};   // LineSearch's
-  const std::string method = nox_methods[static_cast<int>(parameters_.line_search)];
-  auto& line_search = list->sublist("Line Search");
-  line_search.set("Method", method);
-  if (parameters_.line_search == LineSearch::energy)
-    line_search.set<Teuchos::RCP<NOX::LineSearch::UserDefinedFactory>>(
-        "User Defined Line Search Factory", Teuchos::rcp(new EnergyLineSearchFactory(*model_, parameters_.elimination, result.elimination)));
-  // When no step reduces |f|, NOX takes its recovery step (a full step); adhesion problems often need it (|f| is
-  // not monotone along good Newton steps). A non-finite or inverted result is caught by the model instead.
-  for (const char* kind : {"Backtrack", "Polynomial"}) {
-    auto& sub = line_search.sublist(kind);
-    sub.set("Max Iters", 12);
-    sub.set("Minimum Step", 1e-4);
-  }
-  list->sublist("Direction").set("Method", "Newton");
-  if (parameters_.elimination.use == EliminationUse::before_direction ||
-      parameters_.elimination.use == EliminationUse::soft_mode) {
-    list->sublist("Direction").set("Method", "User Defined");
-    list->sublist("Direction").set<Teuchos::RCP<NOX::Direction::UserDefinedFactory>>(
-        "User Defined Direction Factory",
-        Teuchos::rcp(new FrontEliminationFactory(*model_, parameters_.elimination, result.elimination)));
-  }
-  auto& newton = list->sublist("Direction").sublist("Newton");
-  newton.sublist("Linear Solver").set("Tolerance", linear_solver_.parameters().tolerance);
-  if (parameters_.inexact) {   // NOX sets the linear tolerance of every iteration from the last contraction
-    newton.set("Forcing Term Method", "Type 2");
-    newton.set("Forcing Term Initial Tolerance", 1e-4);
-    newton.set("Forcing Term Minimum Tolerance", linear_solver_.parameters().tolerance);
-    newton.set("Forcing Term Maximum Tolerance", 0.01);
-  }
-  list->sublist("Printing").set("Output Information", 0);
-  list->sublist("Solver Options").set<Teuchos::RCP<NOX::Observer>>(
-      "Observer", Teuchos::rcp(new TableObserver(result, linear_solver_, table,
-                                    parameters_.front_diagnosis && model_->system().contact_area() > 0.0 ? model_.get()
-                                                                                                          : nullptr)));
-
-  auto solver = NOX::Solver::buildSolver(group, tests, list);
+  auto solver = NOX::Solver::buildSolver(group, tests.all, list);
   NOX::StatusTest::StatusType status = NOX::StatusTest::Unconverged;
   try {
     status = solver->solve();
@@ -489,8 +255,8 @@ NewtonResult NewtonSolver::solve(discretization::Vector& x, std::ostream* table,
   }
   if (status != NOX::StatusTest::Converged) {
     const auto& final_group = solver->getSolutionGroup();
-    const bool cut_short = short_steps && short_steps->getStatus() == NOX::StatusTest::Failed;
-    const bool stagnated = status == NOX::StatusTest::Failed && give_up && !cut_short &&
+    const bool cut_short = tests.short_steps && tests.short_steps->getStatus() == NOX::StatusTest::Failed;
+    const bool stagnated = status == NOX::StatusTest::Failed && tests.give_up && !cut_short &&
                            solver->getNumIterations() < parameters_.maximum_iterations;   // (not the limit)
     result.failure = "no convergence after " + std::to_string(solver->getNumIterations()) + " iterations (" +
                      (stagnated ? "|f| stopped shrinking, " : "") +
