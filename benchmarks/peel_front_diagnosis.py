@@ -93,6 +93,11 @@ VARIANTS = {
         ('elimination-after-full-step', False,
          [('Nonlinear Solver/Front Elimination/use', 'after the full step', 'string')]),
         ('soft-mode-line-search', False, [('Nonlinear Solver/Front Elimination/use', 'soft mode', 'string')]),
+        ('front-limited-step', False, [('Nonlinear Solver/Front Elimination/use', 'front-limited step', 'string')]),
+        ('front-limited-step-0.1', False, [('Nonlinear Solver/Front Elimination/use', 'front-limited step', 'string'),
+                                           ('Nonlinear Solver/Front Elimination/beyond inflection', 0.1, 'double')]),
+        ('front-limited-step-0.4', False, [('Nonlinear Solver/Front Elimination/use', 'front-limited step', 'string'),
+                                           ('Nonlinear Solver/Front Elimination/beyond inflection', 0.4, 'double')]),
         ('contact-quadrature-8', False, [('Adhesion/quadrature', 8, 'int')]),
         # the front's cost against the step: half and twice the 0.9 deg steps over the same 9 deg
         ('rotation-steps-0.45', False, [('Loading/Rotation Steps/initial', 0.45, 'double'),

@@ -123,3 +123,22 @@ def restore_stopped(work, runs):
         put_back(kept, target_directory, os.path.join(directory, scene + '.log'))
         restored.append((level, scene))
     return restored
+
+
+# The paper's studies on the medium mesh with the equal-area section (results/medium-equal-area/README.md): the
+# results page sets their values beside the named levels'.
+EQUAL_AREA_MEDIUM = os.path.join(ARCHIVE, 'medium-equal-area')
+
+
+def linked_equal_area_medium(work):
+    """<work>/medium-equal-area/ with a link to each of those runs (their tables are written there, not in
+    results/), or None where they are not kept."""
+    if not os.path.isdir(EQUAL_AREA_MEDIUM):
+        return None
+    directory = os.path.join(work, 'medium-equal-area')
+    os.makedirs(directory, exist_ok=True)
+    for scene in sorted(os.listdir(EQUAL_AREA_MEDIUM)):
+        source, link = os.path.join(EQUAL_AREA_MEDIUM, scene), os.path.join(directory, scene)
+        if scene != 'tables' and os.path.isdir(source) and not os.path.lexists(link):
+            os.symlink(source, link)
+    return directory

@@ -45,56 +45,78 @@ def digits(value):
     return f'{value:.3g}' if abs(value) < 10 else f'{value:.4g}' if abs(value) < 1000 else f'{value:.0f}'
 
 
-def cells(result, paper, why=''):
-    """ours ± error bar, its mesh, the paper's value, the difference, the flag and why (where the flag is up)."""
+def cells(result, paper, why='', accurate=None):
+    """ours ± error bar, its mesh, the equal-area medium mesh's value, the paper's value, the difference, the flag
+    and why (where the flag is up)."""
+    equal_area = digits(accurate) if accurate is not None else ''
     if result is None:
-        return ['not run', '', str(paper) if paper is not None else 'held out', '', '', '']
+        return ['not run', '', equal_area, str(paper) if paper is not None else 'held out', '', '', '']
     value, estimate, level, reliable = result
     ours = digits(value) + (f' ± {estimate:.2g}' if estimate is not None else '')
     bar = ('' if estimate is not None and reliable else ' (rough)' if estimate is not None else ' (one level)')
     if paper is None:
-        return [ours + bar, level, 'held out', '', '', '']
+        return [ours + bar, level, equal_area, 'held out', '', '', '']
     difference = 100.0 * (value / paper - 1.0)
     differs = estimate is None or abs(value - paper) > estimate
     flag = ('**more than the error bar**' if estimate is not None and differs else
             'no error bar' if estimate is None else 'within the error bar')
-    return [ours + bar, level, str(paper), f'{difference:+.1f} %', flag, why if differs else '']
+    return [ours + bar, level, equal_area, str(paper), f'{difference:+.1f} %', flag, why if differs else '']
 
 
 def header(title):
-    return [f'### {title}\n', '| case | quantity | ours ± error bar | mesh | paper | ours − paper | difference '
-            '| why (where known) |', '|---|---|---|---|---|---|---|---|']
+    return [f'### {title}\n', '| case | quantity | ours ± error bar | mesh | medium, equal area | paper | ours − paper '
+            '| difference | why (where known) |', '|---|---|---|---|---|---|---|---|---|']
 
 
-def glance(results):
-    """Markdown: the tables at a glance from results = {level: (work directory, pull-off summaries)}."""
+def table4_rows(directory):
+    """{label: curve row} of a level's Table 4 ('30', '31-', ...), empty without a peel by rotation."""
+    if not rotation_curve(directory)[0]:
+        return {}
+    entries, _ = table4(directory)
+    return {label.split()[0]: values for label, _, values, _ in entries}
+
+
+def glance(results, accurate=None):
+    """Markdown: the tables at a glance from results = {level: (work directory, pull-off summaries)}, with the value
+    of each cell on the medium mesh with the equal-area section beside it where accurate = (its work directory, its
+    summaries) is given."""
+    accurate_table4 = table4_rows(accurate[0]) if accurate else {}
+    accurate_summaries = accurate[1] if accurate else {}
+
+    def accurate_value(scene, key):
+        return accurate_summaries[scene][key] if scene in accurate_summaries else None
+
     lines = []
     table4_by_level = {}
     for level, (directory, _) in results.items():
-        if not rotation_curve(directory)[0]:   # no peel by rotation at this level
-            continue
-        entries, _ = table4(directory)
-        table4_by_level[level] = {label.split()[0]: values for label, _, values, _ in entries}
+        rows = table4_rows(directory)
+        if rows:
+            table4_by_level[level] = rows
     if table4_by_level:
         lines += header('Table 4: peeling by rotation (energies / Π_c0)')
         for label, key in TABLE4_ROWS:
             for index, (column, name) in enumerate(TABLE4_QUANTITIES):
                 by_level = {level: rows[label][column] for level, rows in table4_by_level.items() if label in rows}
-                lines.append(f'| θ_y = {label}° | {name} | ' +
-                             ' | '.join(cells(best(by_level), PAPER_TABLE4[key][index], reason('table4', label, name))) + ' |')
+                equal_area = accurate_table4[label][column] if label in accurate_table4 else None
+                lines.append(f'| θ_y = {label}° | {name} | ' + ' | '.join(
+                    cells(best(by_level), PAPER_TABLE4[key][index], reason('table4', label, name), equal_area)) + ' |')
         lines.append('')
     summaries = {level: summary for level, (_, summary) in results.items()}
     lines += header('Table 5: the work before the lift, Π_ext,0 / Π_c0')
     for t in PULL_OFF_ANGLES:
         by_level = {level: s[f'pull-off-{t}']['Pi_ext0_per_Pi_c0'] for level, s in summaries.items()
                     if f'pull-off-{t}' in s}
-        lines.append(f'| {t}° | Π_ext,0 | ' + ' | '.join(cells(best(by_level), PAPER_TABLE5_START[t], reason('table5', str(t), 'Π_ext,0'))) + ' |')
+        lines.append(f'| {t}° | Π_ext,0 | ' + ' | '.join(
+            cells(best(by_level), PAPER_TABLE5_START[t], reason('table5', str(t), 'Π_ext,0'),
+                  accurate_value(f'pull-off-{t}', 'Pi_ext0_per_Pi_c0'))) + ' |')
     lines.append('')
     lines += header('Table 6: pull-off at fixed inclination')
     for t in PULL_OFF_ANGLES:
         for key, name, index in TABLE6_QUANTITIES:
             by_level = {level: s[f'pull-off-{t}'][key] for level, s in summaries.items() if f'pull-off-{t}' in s}
-            lines.append(f'| {t}° | {name} | ' + ' | '.join(cells(best(by_level), PAPER_TABLE6[t][index], reason('table6', str(t), name))) + ' |')
+            lines.append(f'| {t}° | {name} | ' + ' | '.join(
+                cells(best(by_level), PAPER_TABLE6[t][index], reason('table6', str(t), name),
+                      accurate_value(f'pull-off-{t}', key))) + ' |')
     lines.append('')
     for title, prefix in SWEEPS:
         factors = sorted({float(scene.split('-')[-1]) for s in summaries.values() for scene in s
@@ -104,6 +126,7 @@ def glance(results):
             scene = 'pull-off-60' if factor == 1.0 else f'{prefix}-{factor:g}'
             for key, name, _ in TABLE6_QUANTITIES:
                 by_level = {level: s[scene][key] for level, s in summaries.items() if scene in s}
-                lines.append(f'| × {factor:g} | {name} | ' + ' | '.join(cells(best(by_level), None)) + ' |')
+                lines.append(f'| × {factor:g} | {name} | ' + ' | '.join(
+                    cells(best(by_level), None, '', accurate_value(scene, key))) + ' |')
         lines.append('')
     return '\n'.join(lines)

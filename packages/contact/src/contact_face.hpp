@@ -207,6 +207,43 @@ KOKKOS_INLINE_FUNCTION void face_gap_changes(const Integrand& integrand, const d
     }
 }
 
+// The points of one face that a displacement change u_from -> u_to carries outward past the gap `limit` (nm): the
+// peel front's points the step would release. Sets r[3N] to the integral over them of their gap's gradient with
+// respect to the face's nodal displacements (sum dg/du dA) and adds to sums[0..1] their count and sum (limit -
+// g_from) dA: the row c and target t of the constraint c . du = t that brings them, in the integral, to `limit`.
+constexpr int gap_limit_sums = 2;
+template <class Surface, class Integrand>
+KOKKOS_INLINE_FUNCTION void face_gap_limit(const Integrand& integrand, const double X[Surface::nodes][3],
+                                           const double A[Surface::nodes][3], const double u_from[Surface::nodes][3],
+                                           const double u_to[Surface::nodes][3], int order, double limit,
+                                           double r[3 * Surface::nodes], double sums[gap_limit_sums])
+{
+  constexpr int N = Surface::nodes;
+  for (int p = 0; p < 3 * N; ++p) r[p] = 0.0;
+  for (int a = 0; a < order; ++a)
+    for (int b = 0; b < order; ++b) {
+      const FacePoint<Surface> point(order, a, b, X, A);
+      double from[3], to[3];
+      point.position(X, u_from, from);
+      point.position(X, u_to, to);
+      const double g_from = integrand.gap(from), g_to = integrand.gap(to);
+      if (!(g_from < limit && g_to > limit)) continue;
+      sums[0] += 1.0;
+      sums[1] += (limit - g_from) * point.dA;
+      // dg/dx by central differences (a flat substrate's gap is linear in x, a rough one's smooth)
+      constexpr double h = 1e-4;   // nm
+      double normal[3];
+      for (int i = 0; i < 3; ++i) {
+        double plus[3] = {from[0], from[1], from[2]}, minus[3] = {from[0], from[1], from[2]};
+        plus[i] += h;
+        minus[i] -= h;
+        normal[i] = (integrand.gap(plus) - integrand.gap(minus)) / (2.0 * h);
+      }
+      for (int k = 0; k < N; ++k)
+        for (int i = 0; i < 3; ++i) r[3 * k + i] += point.shape[k] * normal[i] * point.dA;
+    }
+}
+
 // The same with the anchors at the reference positions.
 template <class Surface, class Integrand>
 KOKKOS_INLINE_FUNCTION ContactFaceResult contact_face(const Integrand& integrand, const double X[Surface::nodes][3],

@@ -67,6 +67,27 @@ struct ContactKernel {
   }
 };
 
+// A face's nodes (local ids), reference coordinates, anchors and displacements in two states.
+template <int n>
+struct FaceStates {
+  int nodes[n];
+  double X[n][3], A[n][3], u_from[n][3], u_to[n][3];
+
+  KOKKOS_INLINE_FUNCTION FaceStates(const ContactFaceViews& faces, int face, const ElementScatter& from,
+                                    const ElementScatter& to)
+  {
+    for (int k = 0; k < n; ++k) {
+      nodes[k] = faces.nodes(face, k);
+      from.displacement(nodes[k], u_from[k]);
+      to.displacement(nodes[k], u_to[k]);
+      for (int i = 0; i < 3; ++i) {
+        X[k][i] = faces.coordinates(nodes[k], i);
+        A[k][i] = faces.anchors(nodes[k], i);
+      }
+    }
+  }
+};
+
 // One face per work item: face_gap_changes between the displacements of two scatters.
 template <class Surface, class Integrand>
 struct GapChangeKernel {
@@ -80,18 +101,32 @@ struct GapChangeKernel {
 
   KOKKOS_INLINE_FUNCTION void operator()(const int face, value_type sums) const
   {
+    const FaceStates<Surface::nodes> states(faces, face, from, to);
+    face_gap_changes<Surface>(integrand, states.X, states.A, states.u_from, states.u_to, order, large, sums);
+  }
+};
+
+// One face per work item: face_gap_limit between the displacements of two scatters, its row scattered into the
+// residual of `from`.
+template <class Surface, class Integrand>
+struct GapLimitKernel {
+  using value_type = double[];
+  unsigned value_count = gap_limit_sums;
+  ElementScatter from, to;
+  ContactFaceViews faces;
+  Integrand integrand;
+  int order = 4;
+  double limit = 0.0;
+
+  KOKKOS_INLINE_FUNCTION void operator()(const int face, value_type sums) const
+  {
     constexpr int n = Surface::nodes;
-    double X[n][3], A[n][3], u_from[n][3], u_to[n][3];
-    for (int k = 0; k < n; ++k) {
-      const int node = faces.nodes(face, k);
-      from.displacement(node, u_from[k]);
-      to.displacement(node, u_to[k]);
-      for (int i = 0; i < 3; ++i) {
-        X[k][i] = faces.coordinates(node, i);
-        A[k][i] = faces.anchors(node, i);
-      }
-    }
-    face_gap_changes<Surface>(integrand, X, A, u_from, u_to, order, large, sums);
+    const FaceStates<n> states(faces, face, from, to);
+    double r[3 * n], face_sums[gap_limit_sums] = {0.0, 0.0};
+    face_gap_limit<Surface>(integrand, states.X, states.A, states.u_from, states.u_to, order, limit, r, face_sums);
+    if (face_sums[0] == 0.0) return;
+    for (int k = 0; k < gap_limit_sums; ++k) sums[k] += face_sums[k];
+    from.add<n>(states.nodes, r, nullptr);
   }
 };
 
@@ -141,6 +176,22 @@ public:
     } else {
       detail::GapChangeKernel<elements::Quad4Surface, Integrand> kernel{gap_change_sums, from, to, faces, integrand_, order_, large};
       Kokkos::parallel_reduce("spatula: contact Q1C1 gap changes", policy, kernel, sums.data());
+    }
+    return sums;
+  }
+
+  std::array<double, gap_limit_sums> gap_limit(const ContactFaceViews& faces, const ElementScatter& from,
+                                                const ElementScatter& to, double beyond_inflection) const override
+  {
+    std::array<double, gap_limit_sums> sums{};
+    const auto policy = Kokkos::RangePolicy<execution_space>(0, faces.count);
+    const double limit = integrand_.inflection() + beyond_inflection;
+    if (faces.face_nodes == 9) {
+      detail::GapLimitKernel<elements::Quad9Surface, Integrand> kernel{gap_limit_sums, from, to, faces, integrand_, order_, limit};
+      Kokkos::parallel_reduce("spatula: contact Q1C2 gap limit", policy, kernel, sums.data());
+    } else {
+      detail::GapLimitKernel<elements::Quad4Surface, Integrand> kernel{gap_limit_sums, from, to, faces, integrand_, order_, limit};
+      Kokkos::parallel_reduce("spatula: contact Q1C1 gap limit", policy, kernel, sums.data());
     }
     return sums;
   }

@@ -4,6 +4,7 @@
 // header has its equations) and the finite element model on a 1 x 1 x 8 box mesh with its Newton solver, for the
 // tests of the load path and of the energy minimizer.
 #include "contact/adhesion.hpp"
+#include "discretization/system_fields.hpp"
 #include "mesh/box_mesh.hpp"
 #include "solvers/newton.hpp"
 
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <vector>
 
 namespace spatula::test {
 
@@ -110,5 +112,16 @@ struct AdheringBar {
     newton = std::make_unique<solvers::NewtonSolver>(model, newton_parameters, *linear);
   }
 };
+
+// The bar translated rigidly by d along Z (the top face's lift master with it).
+inline Teuchos::RCP<discretization::Vector> translated(const AdheringBar& bar, double d)
+{
+  auto x = bar.system->create_vector();
+  std::vector<double> u(3 * bar.mesh.node_count(), 0.0);
+  for (std::int64_t n = 0; n < bar.mesh.node_count(); ++n) u[3 * n + 2] = d;
+  discretization::set_displacements(*bar.system, *x, u);
+  bar.system->set_master(*x, discretization::Master::lift, d);
+  return x;
+}
 
 }  // namespace spatula::test

@@ -17,20 +17,7 @@
 
 using namespace spatula;
 
-namespace {
-
-// The bar translated rigidly by d along Z (the top face's lift master with it).
-Teuchos::RCP<discretization::Vector> translated(const test::AdheringBar& bar, double d)
-{
-  auto x = bar.system->create_vector();
-  std::vector<double> u(3 * bar.mesh.node_count(), 0.0);
-  for (std::int64_t n = 0; n < bar.mesh.node_count(); ++n) u[3 * n + 2] = d;
-  discretization::set_displacements(*bar.system, *x, u);
-  bar.system->set_master(*x, discretization::Master::lift, d);
-  return x;
-}
-
-}  // namespace
+using test::translated;
 
 TEST(FrontDiagnosis, ARigidLiftAcrossTheInflectionCountsEveryPointAndTheLawsEnergy)
 {

@@ -39,7 +39,14 @@ struct GapChanges {
   double mean[2] = {0.0, 0.0}, spread[2] = {0.0, 0.0};   // X and Y of the crossing points [nm]
   double energy_change[4] = {0.0, 0.0, 0.0, 0.0};        // at t = 0.25, 0.5, 0.75 and 1 of the step [nN nm]
 };
+// The peel front's points a step would release, for a step that limits their gap change (DiscreteSystem::
+// contact_gap_limit): their count and the target t of the row c . du = t.
+struct GapLimit {
+  int points = 0;
+  double target = 0.0;   // [nm^3]
+};
 using contact::gap_change_sums;   // what ContactModel::gap_changes sums (contact_face.hpp: face_gap_changes)
+using contact::gap_limit_sums;    // what ContactModel::gap_limit sums (contact_face.hpp: face_gap_limit)
 
 class ContactModel {
 public:
@@ -53,6 +60,10 @@ public:
   // crossing points' sums of X, Y, X^2, Y^2 and their share of Pi_c's change at t = 0.25, 0.5, 0.75, 1.
   virtual std::array<double, gap_change_sums> gap_changes(const ContactFaceViews& faces, const ElementScatter& from,
                                             const ElementScatter& to, double fraction) const = 0;
+  // The row c of the points the step from `from` to `to` carries outward past the law's inflection + `beyond` (nm),
+  // scattered into the residual of `from`, and this rank's sums of their count and target t (face_gap_limit).
+  virtual std::array<double, gap_limit_sums> gap_limit(const ContactFaceViews& faces, const ElementScatter& from,
+                                                       const ElementScatter& to, double beyond) const = 0;
 };
 
 }  // namespace spatula::discretization

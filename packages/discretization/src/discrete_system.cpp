@@ -280,6 +280,38 @@ GapChanges DiscreteSystem::contact_gap_changes(const Vector& from, const Vector&
   return changes;
 }
 
+GapLimit DiscreteSystem::contact_gap_limit(const Vector& from, const Vector& to, double beyond, Vector& row)
+{
+  auto& impl = *implementation_;
+  GapLimit limit;
+  row.putScalar(0.0);
+  if (!impl.options.contact) return limit;
+  if (!impl.other_state) impl.other_state = Teuchos::rcp(new Vector(impl.overlap));
+  impl.state->doImport(from, *impl.importer, Tpetra::INSERT);
+  impl.other_state->doImport(to, *impl.importer, Tpetra::INSERT);
+  Tpetra::beginAssembly(*impl.residual);   // (the residual's storage, until the next evaluation)
+  impl.residual->putScalar(0.0);
+  std::array<double, gap_limit_sums> local{};
+  {
+    const auto scatter_from = impl.make_scatter(impl.master_values(from), false);
+    auto scatter_to = scatter_from;
+    scatter_to.state = impl.other_state->getLocalViewDevice(Tpetra::Access::ReadOnly);
+    const auto masters_to = impl.master_values(to);
+    for (int m = 0; m < master_count; ++m) scatter_to.masters[m] = masters_to[m];
+    local = impl.options.contact->gap_limit(impl.contact_faces, scatter_from, scatter_to, beyond);
+    Kokkos::fence();
+  }
+  Tpetra::endAssembly(*impl.residual);
+  row.assign(*impl.residual);
+  for (int m = 0; m < master_count; ++m)
+    if (impl.control.prescribed[m]) set_master(row, Master(m), 0.0);
+  std::array<double, gap_limit_sums> sums{};
+  Teuchos::reduceAll(*impl.comm, Teuchos::REDUCE_SUM, gap_limit_sums, local.data(), sums.data());
+  limit.points = static_cast<int>(sums[0]);
+  limit.target = sums[1];
+  return limit;
+}
+
 double DiscreteSystem::mean_diagonal() const
 {
   const auto& matrix = *implementation_->matrix;

@@ -96,6 +96,10 @@ public:
   // The contact points whose gap crosses the law's inflection, or changes by more than `fraction` r0, from the state
   // `from` to the state `to` (all ranks; none without adhesion). Collective.
   GapChanges contact_gap_changes(const Vector& from, const Vector& to, double fraction);
+  // The points the step from `from` to `to` carries outward past the law's inflection + `beyond` (nm): into `row`
+  // the integral of their gap's gradient (zero at prescribed masters), and their count and target, the integral of
+  // (limit - gap at `from`): c . du = t brings them, in the integral, to the limit (all ranks). Collective.
+  GapLimit contact_gap_limit(const Vector& from, const Vector& to, double beyond, Vector& row);
   // Mean absolute diagonal of the last assembled tangent (the scale of the energy descent's shift).
   double mean_diagonal() const;
 

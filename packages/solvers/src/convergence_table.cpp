@@ -61,6 +61,12 @@ public:
               << std::setprecision(3) << result_.elimination.last_reduction << " (" << result_.elimination.local_iterations
               << " local iterations so far)\n";
     }
+    if (table_ && result_.elimination.limited_steps > limited_) {
+      limited_ = result_.elimination.limited_steps;
+      *table_ << "      front-limited step: " << result_.elimination.last_limited_points
+              << " contact points held at the limit, their gap change x " << std::setprecision(3)
+              << result_.elimination.last_kept << "\n";
+    }
     if (table_)
       *table_ << "    " << std::setw(6) << row.iteration << "  " << std::scientific << std::setprecision(3)
               << row.residual_norm << "  " << row.update_norm << "  " << std::defaultfloat << std::setprecision(3)
@@ -89,6 +95,7 @@ private:
   const SpatulaModel* diagnosed_;
   std::chrono::steady_clock::time_point start_;
   int applications_ = 0;
+  int limited_ = 0;
 };
 
 }  // namespace

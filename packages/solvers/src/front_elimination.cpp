@@ -27,7 +27,8 @@ using Extract = Thyra::TpetraOperatorVectorExtraction<double, LocalOrdinal, Glob
 
 const std::vector<std::string>& elimination_use_names()
 {
-  static const std::vector<std::string> names = {"never", "before the direction", "after the full step", "soft mode"};
+  static const std::vector<std::string> names = {"never", "before the direction", "after the full step", "soft mode",
+                                                 "front-limited step"};
   return names;
 }
 
@@ -39,7 +40,10 @@ void FrontEliminationParameters::declare(Teuchos::ParameterList& list)
                              "when the front is relaxed: never, before the direction (at every Newton iteration "
                              "but the first, before Newton's direction is computed) or after the full step (where "
                              "Newton's full step passed the energy's minimum along its line, from that step, before "
-                             "the energy line search would cut it)",
+                             "the energy line search would cut it); or, instead of relaxing it, front-limited step: "
+                             "Newton's step corrected so that the contact points it would carry outward past the "
+                             "law's inflection reach it (in the integral) and the rest of the body follows (one "
+                             "more linear solve per iteration)",
                              elimination_use_names());
   parameters::declare_double(list, "node share", d.node_share,
                              "a node is relaxed where its residual |f_node| is at least this share of the largest",
@@ -51,6 +55,10 @@ void FrontEliminationParameters::declare(Teuchos::ParameterList& list)
   parameters::declare_double(list, "reduction", d.reduction,
                              "the relaxation stops once the front's |f| is this share of its start or below the "
                              "residual of the other unknowns", {0.0, 1.0, true, false});
+  parameters::declare_double(list, "beyond inflection", d.beyond_inflection,
+                             "front-limited step: how far past the law's inflection (its strongest attraction) the "
+                             "points a Newton step would release are let go [nm]",
+                             {0.0, 10.0, false, false});
 }
 
 FrontEliminationParameters FrontEliminationParameters::from(const Teuchos::ParameterList& list)
@@ -61,6 +69,7 @@ FrontEliminationParameters FrontEliminationParameters::from(const Teuchos::Param
   p.maximum_nodes = list.get<int>("maximum nodes");
   p.iterations = list.get<int>("iterations");
   p.reduction = list.get<double>("reduction");
+  p.beyond_inflection = list.get<double>("beyond inflection");
   return p;
 }
 
@@ -239,7 +248,8 @@ class FrontElimination : public NOX::Direction::Generic {
 public:
   FrontElimination(const Teuchos::RCP<NOX::GlobalData>& data, Teuchos::ParameterList& list, const SpatulaModel& model,
                    const FrontEliminationParameters& parameters, EliminationCounts& counts)
-      : newton_(data, list), model_(model), parameters_(parameters), counts_(counts)
+      : newton_(data, list), model_(model), parameters_(parameters), counts_(counts),
+        linear_tolerance_(list.sublist("Newton").sublist("Linear Solver").get<double>("Tolerance", 1e-8))
   {
   }
 
@@ -254,6 +264,7 @@ public:
     if (parameters_.use == EliminationUse::soft_mode && solver.getNumIterations() > 0) along_soft_mode(group);
     if (!newton_.compute(direction, group, solver)) return false;
     if (parameters_.use == EliminationUse::soft_mode && solver.getNumIterations() == 0) find_soft_mode();
+    if (parameters_.use == EliminationUse::front_limited_step) limit_front(direction, group);
     return true;
   }
   bool compute(NOX::Abstract::Vector& direction, NOX::Abstract::Group& group,
@@ -263,6 +274,7 @@ public:
     if (parameters_.use == EliminationUse::soft_mode && solver.getNumIterations() > 0) along_soft_mode(group);
     if (!newton_.compute(direction, group, solver)) return false;
     if (parameters_.use == EliminationUse::soft_mode && solver.getNumIterations() == 0) find_soft_mode();
+    if (parameters_.use == EliminationUse::front_limited_step) limit_front(direction, group);
     return true;
   }
 
@@ -332,6 +344,33 @@ private:
     group.setX(NOX::Thyra::Vector(Thyra::createVector(x, thyra_x.getThyraRCPVector()->space())));
   }
 
+  // Newton's step d becomes d + lambda K^-1 c with c . (d + lambda K^-1 c) = t: the points d would carry outward
+  // past the limit reach it in the integral (c, t: DiscreteSystem::contact_gap_limit), by one more solve with the
+  // group's tangent and its solver (its factors or kept factors, as Newton's own solve).
+  void limit_front(NOX::Abstract::Vector& direction, NOX::Abstract::Group& group)
+  {
+    const auto& thyra_x = dynamic_cast<const NOX::Thyra::Vector&>(group.getX());
+    const auto& thyra_d = dynamic_cast<const NOX::Thyra::Vector&>(direction);
+    const Vector& x = *Extract::getConstTpetraVector(thyra_x.getThyraRCPVector());
+    Vector full(x, Teuchos::Copy);
+    full.update(1.0, *Extract::getConstTpetraVector(thyra_d.getThyraRCPVector()), 1.0);
+    auto row = Teuchos::rcp(new Vector(x.getMap()));
+    const auto limit = model_.system().contact_gap_limit(x, full, parameters_.beyond_inflection, *row);
+    if (limit.points == 0) return;
+    const NOX::Thyra::Vector c(Thyra::createVector(row, thyra_x.getThyraRCPVector()->space()));
+    auto z = c.clone(NOX::ShapeCopy);
+    Teuchos::ParameterList solve;
+    solve.set("Tolerance", linear_tolerance_);
+    if (group.applyJacobianInverse(solve, c, *z) != NOX::Abstract::Group::Ok) return;
+    const double cz = c.innerProduct(*z), cd = c.innerProduct(direction);
+    if (!(cz > 0.0) || !(cd > limit.target)) return;
+    const double lambda = (limit.target - cd) / cz;
+    direction.update(lambda, *z, 1.0);
+    ++counts_.limited_steps;
+    counts_.last_limited_points = limit.points;
+    counts_.last_kept = limit.target / cd;
+  }
+
   // The group's state becomes the relaxed one.
   void relax(NOX::Abstract::Group& group)
   {
@@ -351,6 +390,7 @@ private:
   const SpatulaModel& model_;
   FrontEliminationParameters parameters_;
   EliminationCounts& counts_;
+  double linear_tolerance_;
 };
 
 }  // namespace

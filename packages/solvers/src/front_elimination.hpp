@@ -5,6 +5,10 @@
 // frozen; the global Newton step then starts from a state whose front is in equilibrium with the rest, and sees
 // a nearly linear problem. The local system is the tangent's block on those nodes, gathered to every rank and
 // solved densely (a few hundred unknowns), each local step with the energy line search.
+// The front-limited step (use = front-limited step) treats the same points by a constraint instead: Newton's step d
+// would carry some contact points outward past the law's inflection; d + lambda K^-1 c, with c the integral of their
+// gaps' gradient, brings them (in the integral) only to the inflection plus `beyond inflection`, the rest of the
+// body following consistently (one more solve with the tangent's solver per iteration).
 #include "solvers/spatula_model.hpp"
 
 #include <NOX_Direction_UserDefinedFactory.H>
@@ -16,7 +20,7 @@ namespace Teuchos { class ParameterList; }
 
 namespace spatula::solvers {
 
-enum class EliminationUse { never, before_direction, after_full_step, soft_mode };   // in the order of elimination_use_names()
+enum class EliminationUse { never, before_direction, after_full_step, soft_mode, front_limited_step };   // in the order of elimination_use_names()
 const std::vector<std::string>& elimination_use_names();
 
 struct FrontEliminationParameters {
@@ -25,6 +29,7 @@ struct FrontEliminationParameters {
   int maximum_nodes = 200;     // ... at most this many, the largest residuals first
   int iterations = 4;          // local Newton iterations (each one tangent evaluation)
   double reduction = 0.1;      // stop once the front's |f| is this share of its start, or below the rest's |f|
+  double beyond_inflection = 0.0;   // front-limited step: where the released points stop, past the inflection [nm]
 
   static void declare(Teuchos::ParameterList& list);
   static FrontEliminationParameters from(const Teuchos::ParameterList& list);
@@ -36,6 +41,9 @@ struct EliminationCounts {
   int local_iterations = 0;    // local Newton iterations (each one tangent)
   int last_nodes = 0;          // nodes relaxed at the last application
   double last_reduction = 1.0; // the front's |f| after over before, at the last application
+  int limited_steps = 0;       // front-limited steps: Newton directions corrected
+  int last_limited_points = 0;  // ... the points the last one held back
+  double last_kept = 1.0;       // ... the share c . d' / c . d of their gap change it kept
 };
 
 // Relaxes the front of the state x, whose residual is f: the nodes whose |f_node| is at least 'node share' of the

@@ -201,7 +201,8 @@ Teuchos::RCP<Teuchos::ParameterList> nox_parameters(const NewtonParameters& para
   }
   list->sublist("Direction").set("Method", "Newton");
   if (parameters.elimination.use == EliminationUse::before_direction ||
-      parameters.elimination.use == EliminationUse::soft_mode) {
+      parameters.elimination.use == EliminationUse::soft_mode ||
+      parameters.elimination.use == EliminationUse::front_limited_step) {
     list->sublist("Direction").set("Method", "User Defined");
     list->sublist("Direction").set<Teuchos::RCP<NOX::Direction::UserDefinedFactory>>(
         "User Defined Direction Factory",
