@@ -26,7 +26,8 @@ def benchmark_scene(name, *, mesh='coarse', refinement=1, layers=0, section='ins
     Step maxima in deg and nm, minima 0.01; `steps`: further entries of both step lists. fields: -1 writes no
     fields, 0 the first and last states only, n every n-th state. `land_at`: rotation angles [deg] a step ends at
     exactly (written as checkpoints), so that values there are not interpolated. layers: element layers through the
-    pad (0: the level's). section: Mesh/section (the shaft's section polygon). jump: entries of Loading/Jump. checkpoint_minutes: minutes between the `last state` checkpoints of a long run (the app's
+    pad (0: the level's). section: Mesh/section (the shaft's section polygon; always written, so that a recorded
+    benchmark keeps its meaning whatever the program's default). jump: entries of Loading/Jump. checkpoint_minutes: minutes between the `last state` checkpoints of a long run (the app's
     default when None). The output directory is `name`."""
     step_lists = {'Rotation Steps': {'maximum': float(rotation_maximum), 'minimum': 0.01, **(steps or {})}}
     load = {'type': loading, 'theta_y': float(theta_y)}
@@ -37,7 +38,7 @@ def benchmark_scene(name, *, mesh='coarse', refinement=1, layers=0, section='ins
         step_lists['Lift Steps'] = {'maximum': float(lift_maximum), 'minimum': 0.01, **(steps or {})}
     entries = {
         'Mesh': {'level': mesh, **({'refinement factor': refinement} if refinement != 1 else {}),
-                 **({'layers': layers} if layers else {}), **({'section': section} if section != 'inscribed' else {})},
+                 **({'layers': layers} if layers else {}), 'section': section},
         'Adhesion': {'law': 'frictionless', **(adhesion or {})},
         'Loading': {**load, **step_lists, **({'Jump': jump} if jump else {})},
         **({'Linear Solver': linear_solver} if linear_solver else {}),
