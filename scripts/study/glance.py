@@ -13,6 +13,7 @@ TABLE6_QUANTITIES = (('P_max_nN', 'P_max [nN]', 0), ('delta_u_z_nm', 'Δu_z [nm]
 SWEEPS = (('Table 7: adhesion strength γ_W / γ_W0 at 60°', 'gamma-W'),
           ('Table 8: length scale γ_L / γ_L0 at 60°', 'gamma-L'))
 TABLE4_ROWS = (('30', 30), ('31-', '31-'), ('31+', '31+'), ('60', 60), ('90', 90), ('120', 120), ('128', 128))
+TABLE4_CASES = {'31-': '31°, before the first drop', '31+': '31°, after it', '128': '128°, before detachment'}
 TABLE4_QUANTITIES = (('Pi_ext_per_Pi_c0', 'Π_ext'), ('Pi_int_per_Pi_c0', 'Π_int'), ('Pi_sa_per_Pi_c0', 'Π_sa'))
 
 
@@ -98,7 +99,7 @@ def glance(results, accurate=None):
             for index, (column, name) in enumerate(TABLE4_QUANTITIES):
                 by_level = {level: rows[label][column] for level, rows in table4_by_level.items() if label in rows}
                 equal_area = accurate_table4[label][column] if label in accurate_table4 else None
-                lines.append(f'| θ_y = {label}° | {name} | ' + ' | '.join(
+                lines.append(f'| θ_y = {TABLE4_CASES.get(label, label + "°")} | {name} | ' + ' | '.join(
                     cells(best(by_level), PAPER_TABLE4[key][index], reason('table4', label, name), equal_area)) + ' |')
         lines.append('')
     summaries = {level: summary for level, (_, summary) in results.items()}
