@@ -158,6 +158,8 @@ def write_markdown(rows):
              'the fine level\'s pull-off at 60° (frictionless Q1C2, rotation to 60° with zero net force, then the lift '
              'to detachment) and is compared with it: the fine level (the paper\'s resolution, 97,888 hexahedra) is '
              'the reference, so its own discretization error is not in the table (docs/validation.md estimates it). '
+             'A mesh named without its section has the paper\'s inscribed one (`Mesh/section` = inscribed; the '
+             'program\'s default is equal area). '
              'Wall times are each run\'s own clock on this 2-core machine with another run beside it (one rank each); '
              'the study rows (coarse, medium) time the pull-off from the study rotation\'s checkpoint only, the '
              'others include their rotation to 60°. `Mesh/level` = auto picks from this table (the copy in '

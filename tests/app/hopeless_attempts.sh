@@ -10,6 +10,7 @@
 # state with only the load moved, as before that parameter), both with 'Linear Solver/refactor' = lag so that the
 # counts do not depend on measured times, must end in the same state, the jump within the smallest increment (0.01
 # deg: where bisection stops near the fold depends on where Newton starts), with fewer tangents when predicted.
+# All on the paper's coarse mesh (Mesh/section = inscribed), whose rotation to 36 deg has attempts for each rule to end.
 # usage: hopeless_attempts.sh <spatula>
 set -eu
 app=$1
@@ -29,6 +30,8 @@ def add_list(name, list_name, entries):
     open(f'{name}.xml', 'w').write(text.replace('<ParameterList name="Output">', f'<ParameterList name="{list_name}">'
         + entries + '</ParameterList>\n  <ParameterList name="Output">'))
 nonlinear = lambda name, entries: add_list(name, 'Nonlinear Solver', entries)
+for name in ('old', 'new', 'always', 'short', 'predicted', 'unpredicted'):
+    add_list(name, 'Mesh', '<Parameter name="section" type="string" value="inscribed"/>')
 no_short_steps = '<Parameter name="short steps" type="int" value="0"/>'
 nonlinear('old', '<Parameter name="non-contracting iterations" type="int" value="0"/>' + no_short_steps)
 nonlinear('new', no_short_steps)

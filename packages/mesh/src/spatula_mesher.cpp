@@ -58,9 +58,10 @@ void MeshParameters::declare(Teuchos::ParameterList& mesh)
   parameters::declare_int(mesh, "layers", d.layers, "elements through the pad thickness (0: the level's 4, 4, 10)",
                           parameters::Range::closed(0, 32));
   parameters::declare_string(mesh, "section", parameters::name_of(d.section, section_names()),
-                             "the shaft and rim's half-disc section polygon: nodes on the curve (inscribed: 10 % of "
-                             "the area lost with 4 layers, 1.1 % with 10) or its arc's inner nodes moved outward to "
-                             "keep the curve's area (equal area)", section_names());
+                             "the shaft and rim's half-disc section polygon: its arc's inner nodes moved outward to "
+                             "keep the curve's area (equal area: within 1 % of the fine level at 60 deg on the medium "
+                             "mesh, docs/mesh-choice.md), or every node on the curve as in the paper's Table 3 "
+                             "(inscribed: 10 % of the area lost with 4 layers, 1.1 % with 10)", section_names());
   parameters::declare_double(mesh, "target error", d.target_error_percent,
                              "level = auto only: the largest relative error [%] of P_max, Delta u_z and Delta Pi_ext "
                              "allowed, as measured against the fine level on the pull-off at 60 deg (other scenes "
@@ -79,9 +80,12 @@ MeshParameters MeshParameters::from(const Teuchos::ParameterList& mesh)
   if (p.layers != 0 && p.layers < 3)
     parameters::fail("Mesh/layers", p.layers, "allowed: 0 (the level's value) or 3..32");
   if (p.level != "auto") return p;
-  if (p.refinement_factor != 1 || p.layers != 0 || p.section != SectionShape::inscribed)
+  const MeshParameters defaults;
+  if (p.refinement_factor != defaults.refinement_factor || p.layers != defaults.layers ||
+      p.section != defaults.section)
     throw parameters::InputError("parameter 'Mesh/level' = 'auto' chooses 'refinement factor', 'layers' and "
-                                 "'section' itself: leave them at their defaults (1, 0, 'inscribed'; got " +
+                                 "'section' itself: leave them at their defaults (1, 0, '" +
+                                 parameters::name_of(defaults.section, section_names()) + "'; got " +
                                  std::to_string(p.refinement_factor) + ", " + std::to_string(p.layers) + ", '" +
                                  parameters::name_of(p.section, section_names()) + "') or name a level");
   auto choice = choose_mesh(p.target_error_percent);

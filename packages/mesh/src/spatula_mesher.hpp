@@ -29,7 +29,7 @@ struct MeshParameters {
   std::string level = "coarse";   // a name in mesh_levels(); 'auto' in a scene is resolved by from()
   int refinement_factor = 1;      // multiplies the level's in-plane subdivision
   int layers = 0;                 // elements through the pad thickness; 0: the level's value
-  SectionShape section = SectionShape::inscribed;
+  SectionShape section = SectionShape::equal_area;   // inscribed: the paper's Table 3 polygon
   double target_error_percent = 2.0;   // level = auto: the largest measured error allowed (mesh_choice.hpp)
   std::string choice;                  // level = auto: what was picked and why (empty otherwise)
 
