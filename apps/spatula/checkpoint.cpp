@@ -139,12 +139,16 @@ void write_checkpoint(const std::string& file, const std::string& label, const d
     out.write(group + "/stage", std::vector<double>{static_cast<double>(stage.index), stage.start});
     out.write(group + "/signature", values(signature(system.nodes(), scene)));
     out.write(group + "/material", values(material_signature(scene)));
+    const auto& curve = record.step_control.curve;
     out.write(group + "/run", std::vector<double>{record.initial_internal_energy, record.initial_contact_energy,
                                                   record.peak_moment, record.peak_force, record.seconds,
                                                   static_cast<double>(record.field_states),
                                                   record.step_control.increment, record.step_control.failed_load,
                                                   record.step_control.failed_known ? 1.0 : 0.0,
-                                                  record.step_control.bisecting ? 1.0 : 0.0});
+                                                  record.step_control.bisecting ? 1.0 : 0.0, curve.load[0],
+                                                  curve.load[1], curve.load[2], curve.reaction[0], curve.reaction[1],
+                                                  curve.reaction[2], static_cast<double>(curve.count),
+                                                  static_cast<double>(curve.step), curve.largest});
     out.close();
   }
   io::rename_path(writing, file);
@@ -185,8 +189,21 @@ RunRecord read_run_record(const Scene& scene)
 {
   io::Hdf5File in(scene.loading.restart_file, io::Hdf5File::Mode::read);
   const auto r = in.read_doubles("/checkpoints/" + restart_label(scene.loading) + "/run");
-  if (r.size() != 10) throw std::runtime_error(restart_key(scene) + ": the checkpoint has no run record");
-  return {r[0], r[1], r[2], r[3], r[4], static_cast<int>(r[5]), analysis::StepControllerState{r[6], r[7], r[8] != 0.0, r[9] != 0.0}};
+  // 10 values, or 19 with the curve's samples (CurveResolution)
+  if (r.size() != 10 && r.size() != 19)
+    throw std::runtime_error(restart_key(scene) + ": the checkpoint has no run record");
+  analysis::StepControllerState control{r[6], r[7], r[8] != 0.0, r[9] != 0.0, {}};
+  if (r.size() == 19) {
+    auto& curve = control.curve;
+    for (int k = 0; k < 3; ++k) {
+      curve.load[k] = r[10 + k];
+      curve.reaction[k] = r[13 + k];
+    }
+    curve.count = static_cast<int>(r[16]);
+    curve.step = static_cast<int>(r[17]);
+    curve.largest = r[18];
+  }
+  return {r[0], r[1], r[2], r[3], r[4], static_cast<int>(r[5]), control};
 }
 
 std::optional<analysis::LoadPath::JumpInProgress> read_jump_in_progress(const Scene& scene,

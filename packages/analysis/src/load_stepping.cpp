@@ -76,9 +76,11 @@ std::optional<Failure> LoadPath::follow(Master controlled, bool force, double va
   auto& system = model_.system();
   previous_increment_ = older_increment_ = 0.0;   // no predictor across a change of the controlled load
   ended_ = false;
+  curve_.start(steps.curve_tolerance, steps.initial * unit);
   if (resumed_control_) {   // a resumed run goes on where the stopped one was
     if (resumed_control_->increment > 0.0) stepping.increment = resumed_control_->increment;
     stepping.failed.restore(*resumed_control_);
+    curve_.restore(*resumed_control_);
     resumed_control_.reset();
   }
   if (resumed_jump_) {   // a checkpointed jump first: it began at this state
@@ -223,8 +225,13 @@ void LoadPath::take_converged_step(Stepping& stepping, const Vector& trial, Load
     stepping.refused = false;
   if (iterations <= stepping.steps.easy_iterations)
     stepping.increment = std::min(stepping.increment * stepping.steps.growth, stepping.steps.maximum * stepping.unit);
+  if (!stepping.force) {   // the reaction curve along the load (a force stage's load is its reaction)
+    curve_.reached(point.step, last().step, point.after_jump, stepping.value, point.reaction(stepping.controlled));
+    stepping.increment = curve_.limit(stepping.increment);
+  }
   point.step_control.increment = stepping.increment;
   stepping.failed.save(point.step_control);
+  curve_.save(point.step_control);
   take_step(trial, point, taken, table, on_point);
 }
 

@@ -220,6 +220,7 @@ private:
   double older_increment_ = 0.0;      // previous_ - older_ in the load (0: no quadratic predictor)
   LoadHistory history_;
   std::optional<StepControllerState> resumed_control_;   // carried by a restart (LoadPoint::step_control)
+  CurveResolution curve_;   // of the stage being followed
   int next_step() const { return history_.next_step(); }
   std::shared_ptr<const InstabilityPolicy> policy_;
   bool jumps() const;   // the policy jumps at fixed load (early descents, a checkpointed jump)

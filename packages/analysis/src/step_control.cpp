@@ -60,6 +60,44 @@ double FailedLoad::tolerance(double value)
   return 1e-12 * std::max(1.0, std::abs(value));
 }
 
+void CurveResolution::start(double tolerance, double floor)
+{
+  tolerance_ = tolerance;
+  floor_ = floor;
+  samples_ = CurveSamples{};
+}
+
+void CurveResolution::reached(int step, int before, bool jumped, double load, double reaction)
+{
+  auto& s = samples_;
+  if (jumped || s.step != before) s.count = 0;
+  s.step = step;
+  if (s.count == 3) {
+    for (int k = 0; k < 2; ++k) {
+      s.load[k] = s.load[k + 1];
+      s.reaction[k] = s.reaction[k + 1];
+    }
+    s.count = 2;
+  }
+  s.load[s.count] = load;
+  s.reaction[s.count] = reaction;
+  ++s.count;
+  s.largest = std::max(s.largest, std::abs(reaction));
+}
+
+double CurveResolution::limit(double increment) const
+{
+  const auto& s = samples_;
+  if (tolerance_ <= 0.0 || s.count < 3) return increment;
+  const double h1 = s.load[1] - s.load[0], h2 = s.load[2] - s.load[1];
+  if (h1 == 0.0 || h2 == 0.0) return increment;
+  const double second = 2.0 * ((s.reaction[2] - s.reaction[1]) / h2 - (s.reaction[1] - s.reaction[0]) / h1) /
+                        (h1 + h2);
+  if (second == 0.0) return increment;
+  const double resolved = std::sqrt(8.0 * tolerance_ * s.largest / std::abs(second));
+  return std::min(increment, std::max(resolved, floor_));
+}
+
 const std::vector<std::string>& StepParameters::predictor_names()
 {
   static const std::vector<std::string> names = {"secant", "quadratic"};
@@ -82,6 +120,12 @@ void StepParameters::declare(Teuchos::ParameterList& list, const StepParameters&
   parameters::declare_bool(list, "predict after a failure", d.predict_after_failure,
                            "a retry with a shorter increment after a failed attempt starts from the predictor "
                            "(true) or from the last converged state with only the load moved (false)");
+  parameters::declare_double(list, "curve tolerance", d.curve_tolerance,
+                             "0: off. Else the increment is also at most sqrt(8 tol R_max / |R''|) (but not below "
+                             "'initial'), R'' the reaction curve's second difference over the last three converged "
+                             "states, R_max the stage's largest reaction: the curve, and a peak of it, sampled within "
+                             "tol R_max",
+                             {0.0, 1.0, false, true});
 }
 
 StepParameters StepParameters::from(const Teuchos::ParameterList& list, const std::string& path)
@@ -95,6 +139,7 @@ StepParameters StepParameters::from(const Teuchos::ParameterList& list, const st
   p.cut = list.get<double>("cut");
   p.predictor = parameters::choice<Predictor>(list, "predictor", predictor_names());
   p.predict_after_failure = list.get<bool>("predict after a failure");
+  p.curve_tolerance = list.get<double>("curve tolerance");
   if (p.minimum > p.initial)
     parameters::fail(parameters::key_path(path, "minimum"), p.minimum, "must not exceed 'initial' = " + std::to_string(p.initial));
   if (p.maximum < p.initial)

@@ -21,6 +21,7 @@ struct StepParameters {
   double cut = 0.5;
   Predictor predictor = Predictor::quadratic;
   bool predict_after_failure = true;
+  double curve_tolerance = 0.0;   // CurveResolution's; 0: the increments follow Newton's iterations alone
 
   static void declare(Teuchos::ParameterList& list, const StepParameters& defaults);
   static StepParameters from(const Teuchos::ParameterList& list, const std::string& path);
@@ -43,10 +44,43 @@ PredictorWeights predictor_weights(StepParameters::Predictor predictor, double i
 // increments in one unit; direction +1 or -1 (the sense of travel).
 // What the step controller knows at a converged state, so that a resumed run goes on as the uninterrupted one
 // would: the increment it tries next and the failed load ahead (internal units; increment 0: the initial one).
+// The last converged states of a smooth stretch of the path (load, reaction; the newest last) and the largest
+// |reaction| of the stage so far: what CurveResolution limits the increment by.
+struct CurveSamples {
+  double load[3] = {0.0, 0.0, 0.0}, reaction[3] = {0.0, 0.0, 0.0};
+  int count = 0;      // 0 to 3
+  int step = -1;      // the step number of the newest
+  double largest = 0.0;
+};
+
 struct StepControllerState {
   double increment = 0.0;
   double failed_load = 0.0;
   bool failed_known = false, bisecting = false;
+  CurveSamples curve;
+};
+
+// Resolving the reaction curve (M_y or P_z against the load): with a tolerance tol > 0 the increment h is at most
+// sqrt(8 tol R_max / |R''|), R'' the second divided difference of the last three converged states of the smooth
+// stretch and R_max the largest |reaction| of the stage, so that the curve between samples departs from its chord by
+// at most tol R_max, and a sampled peak lies within tol R_max of the curve's (|R''| h^2 / 8 for a parabola). Easy
+// stretches then take long increments and the top of a pull-off short ones. A jump starts a new stretch. The bound
+// never goes below a floor (the stage's initial increment): where the curve is rough at the scale of the
+// increments (a peel front's micro-snaps), the second difference grows as the spacing shrinks and would otherwise
+// drive the increments down to nothing.
+class CurveResolution {
+public:
+  void start(double tolerance, double floor);   // a stage begins: a new stretch, the largest reaction forgotten
+  // The converged state numbered `step`: on the stretch if the newest sample is the state before it (`before`, the
+  // step number of the path's last point) and the step was no jump, else the first of a new stretch.
+  void reached(int step, int before, bool jumped, double load, double reaction);
+  double limit(double increment) const;            // at least the floor (or `increment`, if smaller)
+  void save(StepControllerState& state) const { state.curve = samples_; }
+  void restore(const StepControllerState& state) { samples_ = state.curve; }
+
+private:
+  double tolerance_ = 0.0, floor_ = 0.0;
+  CurveSamples samples_;
 };
 
 class FailedLoad {
