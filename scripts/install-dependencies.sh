@@ -12,6 +12,7 @@ packages=(
   libopenblas0-pthread                              # fast BLAS under MUMPS (4x over reference BLAS)
   python3 python3-numpy python3-matplotlib python3-h5py   # plots and output checks
   paraview xvfb                                     # headless rendering of the XDMF output
+  snakemake                                         # the studies' workflow (scripts/workflow/Snakefile)
 )
 
 missing=()
