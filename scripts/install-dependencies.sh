@@ -13,6 +13,7 @@ packages=(
   python3 python3-numpy python3-matplotlib python3-h5py   # plots and output checks
   paraview xvfb                                     # headless rendering of the XDMF output
   snakemake                                         # the studies' workflow (scripts/workflow/Snakefile)
+  slurm-wlm munge                                   # a local batch system for the workflow's Slurm test
 )
 
 missing=()
