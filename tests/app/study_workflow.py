@@ -5,7 +5,6 @@ run-study.py's tables byte for byte; and the coarse rough study run afresh (incl
 curves (all but the wall clock) and tables as run-study.py's runs. Skipped (exit 77) where snakemake is missing.
 
     study_workflow.py <spatula>"""
-import csv
 import os
 import re
 import shutil
@@ -16,6 +15,7 @@ import tempfile
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..'))
 sys.path.insert(0, os.path.join(ROOT, 'tests', 'app'))
 from expectations import check, finish  # noqa: E402
+from workflow_checks import curve_differences, shown, tables  # noqa: E402
 
 SNAKEMAKE = shutil.which('snakemake')
 if not SNAKEMAKE:
@@ -28,23 +28,12 @@ PYTHON = '/usr/bin/python3'
 def workflow(directory, target, *config, dry=False):
     command = [SNAKEMAKE, '-s', os.path.join(ROOT, 'scripts', 'workflow', 'Snakefile'), '-d', directory,
                '--cores', '2', target] + (['-n'] if dry else []) + ['--config'] + list(config)
-    result = subprocess.run(command, capture_output=True, text=True)
-    if result.returncode != 0:
-        print(result.stdout[-3000:], result.stderr[-3000:])
-    return result
+    return shown(subprocess.run(command, capture_output=True, text=True))
 
 
 def run_study(study, work, *options):
-    result = subprocess.run([PYTHON, os.path.join(ROOT, 'scripts', 'run-study.py'), study, '--mesh', 'coarse',
-                             '--work', work] + list(options), capture_output=True, text=True)
-    if result.returncode != 0:
-        print(result.stdout[-3000:], result.stderr[-3000:])
-    return result
-
-
-def tables(work):
-    directory = os.path.join(work, 'coarse', 'tables')
-    return {name: open(os.path.join(directory, name)).read() for name in sorted(os.listdir(directory))}
+    return shown(subprocess.run([PYTHON, os.path.join(ROOT, 'scripts', 'run-study.py'), study, '--mesh', 'coarse',
+                                 '--work', work] + list(options), capture_output=True, text=True))
 
 
 with tempfile.TemporaryDirectory() as root:
@@ -70,11 +59,10 @@ with tempfile.TemporaryDirectory() as root:
           'the rough study run by the workflow')
     check(run_study('rough', f'{root}/runner', '--set', override).returncode == 0, 'the rough study run by run-study.py')
     for scene in ('rough-z0-0', 'rough-z0-4', 'rough-z0-8'):
-        curves = [list(csv.DictReader(open(os.path.join(root, work, 'coarse', scene, 'curve.csv'))))
-                  for work in ('fresh', 'runner')]
-        check(len(curves[0]) == len(curves[1]) >= 3, f'{scene}: {len(curves[0])} and {len(curves[1])} states')
-        differences = [(key, a[key], b[key]) for a, b in zip(*curves) for key in a if key != 'wall_s' and a[key] != b[key]]
-        check(not differences, f'{scene}: the same curve as run-study.py\'s (differences: {differences[:3]})')
+        rows, others, differences = curve_differences(*(os.path.join(root, work, 'coarse', scene)
+                                                        for work in ('fresh', 'runner')))
+        check(rows == others >= 3 and not differences, f"{scene}: the same curve as run-study.py's ({rows}, {others} "
+              f'states; {differences[:3]})')
     check(tables(f'{root}/fresh') == tables(f'{root}/runner'), "the fresh study's tables are run-study.py's")
 
 finish('workflow: the plan, restored and fresh studies as run-study.py\'s')

@@ -8,7 +8,6 @@ run locally; each job asked for its ranks and the preflight's memory. The daemon
 (exit 77) where snakemake, slurm-wlm or munge is missing or not root.
 
     study_workflow_slurm.py <spatula>"""
-import csv
 import os
 import pwd
 import re
@@ -20,6 +19,7 @@ import tempfile
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..'))
 sys.path.insert(0, os.path.join(ROOT, 'tests', 'app'))
 from expectations import check, finish  # noqa: E402
+from workflow_checks import curve_differences, shown, tables  # noqa: E402
 
 missing = [p for p in ('snakemake', 'munged', 'slurmctld', 'slurmd', 'sbatch') if not shutil.which(p)]
 if missing or os.geteuid() != 0:
@@ -36,16 +36,8 @@ def workflow(directory, target, *config, slurm=False):
     # A job's state is polled every 2 s here (the profile keeps Snakemake's 33 s, kinder to a shared controller).
     mode = (['--profile', os.path.join(ROOT, 'scripts', 'workflow', 'profiles', 'slurm'),
              '--max-status-checks-per-second', '0.5'] if slurm else ['--cores', '2'])
-    result = subprocess.run(['snakemake', '-s', SNAKEFILE, '-d', directory] + mode + [target, '--config'] +
-                            list(config), capture_output=True, text=True)
-    if result.returncode != 0:
-        print(result.stdout[-3000:], result.stderr[-3000:])
-    return result
-
-
-def tables(work):
-    directory = os.path.join(work, 'coarse', 'tables')
-    return {name: open(os.path.join(directory, name)).read() for name in sorted(os.listdir(directory))}
+    return shown(subprocess.run(['snakemake', '-s', SNAKEFILE, '-d', directory] + mode + [target, '--config'] +
+                                list(config), capture_output=True, text=True))
 
 
 with tempfile.TemporaryDirectory() as root:
@@ -75,13 +67,10 @@ with tempfile.TemporaryDirectory() as root:
         for scene in ('rough-z0-0', 'rough-z0-4', 'rough-z0-8'):
             log = open(os.path.join(root, 'batch', 'coarse', scene + '.log')).read()
             check('2 rank(s)' in log, f'{scene}: ran on two ranks')
-            curves = [list(csv.DictReader(open(os.path.join(root, work, 'coarse', scene, 'curve.csv'))))
-                      for work in ('batch', 'local')]
-            differences = [(key, a[key], b[key]) for a, b in zip(*curves) for key in a if key not in ('wall_s', 'stage')
-                           and abs(float(a[key]) - float(b[key])) > 1e-6 * max(1.0, abs(float(a[key])))]
-            check(len(curves[0]) == len(curves[1]) >= 3 and not differences,
-                  f'{scene}: the Slurm run is the local one ({len(curves[0])}, {len(curves[1])} states; '
-                  f'{differences[:3]})')
+            rows, others, differences = curve_differences(*(os.path.join(root, work, 'coarse', scene)
+                                                            for work in ('batch', 'local')), relative=1e-6)
+            check(rows == others >= 3 and not differences,
+                  f'{scene}: the Slurm run is the local one ({rows}, {others} states; {differences[:3]})')
         check(tables(f'{root}/batch') == tables(f'{root}/local'), "the Slurm study's tables are the local one's")
     finally:
         subprocess.run([CLUSTER, 'stop', cluster])
