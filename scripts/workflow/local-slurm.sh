@@ -6,7 +6,8 @@
 #   scripts/workflow/local-slurm.sh stop <dir>
 #
 # Needs root (the daemons run as root here) and Debian's slurm-wlm and munge. The node is this host with `cpus`
-# CPUs (default: all) and `memory` MB (default: 3/4 of MemTotal); one partition, `local`, the default.
+# CPUs (default: all) and `memory` MB (default: 3/4 of MemTotal); one partition, `local`, the default. The daemons
+# listen on ports $SLURM_LOCAL_PORT and the next (default 6817, Slurm's), so that two such clusters can run at once.
 set -euo pipefail
 action=${1:?usage: local-slurm.sh start|stop <dir> [cpus] [memory MB]}
 dir=$(realpath -m "${2:?usage: local-slurm.sh start|stop <dir> [cpus] [memory MB]}")
@@ -38,12 +39,15 @@ done
 cpus=${3:-$(nproc)}
 memory=${4:-$(awk '/MemTotal/ {print int($2 / 1024 * 3 / 4)}' /proc/meminfo)}
 host=$(hostname -s)
+port=${SLURM_LOCAL_PORT:-6817}
 mkdir -p "$dir/state" "$dir/spool"
 chmod 700 "$dir"
 [ -f "$dir/munge.key" ] || { dd if=/dev/urandom of="$dir/munge.key" bs=1024 count=1 status=none; chmod 400 "$dir/munge.key"; }
 cat > "$dir/slurm.conf" <<CONF
 ClusterName=spatula-local
-SlurmctldHost=$host
+SlurmctldHost=$host(127.0.0.1)
+SlurmctldPort=$port
+SlurmdPort=$((port + 1))
 SlurmUser=root
 SlurmdUser=root
 AuthType=auth/munge
@@ -65,7 +69,7 @@ SchedulerType=sched/backfill
 ReturnToService=2
 MpiDefault=none
 MinJobAge=3600
-NodeName=$host CPUs=$cpus RealMemory=$memory State=UNKNOWN
+NodeName=$host NodeAddr=127.0.0.1 CPUs=$cpus RealMemory=$memory State=UNKNOWN
 PartitionName=local Nodes=$host Default=YES MaxTime=INFINITE State=UP
 CONF
 export SLURM_CONF=$dir/slurm.conf

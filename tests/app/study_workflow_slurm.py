@@ -9,9 +9,7 @@ run locally; each job asked for its ranks and the preflight's memory. The daemon
 
     study_workflow_slurm.py <spatula>"""
 import os
-import pwd
 import re
-import shutil
 import subprocess
 import sys
 import tempfile
@@ -19,15 +17,9 @@ import tempfile
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..'))
 sys.path.insert(0, os.path.join(ROOT, 'tests', 'app'))
 from expectations import check, finish  # noqa: E402
-from workflow_checks import curve_differences, shown, tables  # noqa: E402
+from workflow_checks import curve_differences, prepare_slurm_test, shown, tables  # noqa: E402
 
-missing = [p for p in ('snakemake', 'munged', 'slurmctld', 'slurmd', 'sbatch') if not shutil.which(p)]
-if missing or os.geteuid() != 0:
-    print(f"skipped: {'missing ' + ', '.join(missing) if missing else 'needs root'} "
-          '(Debian packages snakemake, slurm-wlm, munge)')
-    sys.exit(77)
-os.environ['SPATULA_APP'] = os.path.abspath(sys.argv[1])
-os.environ.setdefault('USER', pwd.getpwuid(os.geteuid()).pw_name)   # Snakemake's SLURM executor reads it
+prepare_slurm_test(sys.argv[1], 6817)   # each Slurm test its own ports: they may run at once
 SNAKEFILE = os.path.join(ROOT, 'scripts', 'workflow', 'Snakefile')
 CLUSTER = os.path.join(ROOT, 'scripts', 'workflow', 'local-slurm.sh')
 

@@ -24,3 +24,19 @@ def curve_differences(first, second, relative=0.0):
     differences = [(key, a[key], b[key]) for a, b in zip(*curves) for key in a if key not in ('wall_s', 'stage')
                    and abs(float(a[key]) - float(b[key])) > relative * max(1.0, abs(float(a[key])))]
     return len(curves[0]), len(curves[1]), differences
+
+
+def prepare_slurm_test(app, port):
+    """Exits with 77 (skipped) where snakemake, slurm-wlm or munge is missing or this is not root; else sets what the
+    runs and Snakemake's SLURM executor read: the app, $USER, and the local cluster's ports (local-slurm.sh)."""
+    import pwd
+    import shutil
+    import sys
+    missing = [p for p in ('snakemake', 'munged', 'slurmctld', 'slurmd', 'sbatch') if not shutil.which(p)]
+    if missing or os.geteuid() != 0:
+        print(f"skipped: {'missing ' + ', '.join(missing) if missing else 'needs root'} "
+              '(Debian packages snakemake, slurm-wlm, munge)')
+        sys.exit(77)
+    os.environ['SPATULA_APP'] = os.path.abspath(app)
+    os.environ.setdefault('USER', pwd.getpwuid(os.geteuid()).pw_name)
+    os.environ['SLURM_LOCAL_PORT'] = str(port)
