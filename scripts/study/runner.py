@@ -30,6 +30,19 @@ def checkpoint_ready(directory, dependency, scene):
     return None
 
 
+# One BLAS and one Kokkos thread per rank: ranks are what pay here (docs/performance.md).
+RUN_ENVIRONMENT = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
+
+
+def copy_restart(directory, scene, source):
+    """Copies the rotation's checkpoints file `source` to <directory>/<scene>.restart.h5 (what the pull-off reads),
+    whole or not at all, unless it is there."""
+    copy = os.path.join(directory, scene + '.restart.h5')
+    if not os.path.exists(copy):
+        shutil.copyfile(source, copy + '.copying')
+        os.replace(copy + '.copying', copy)
+
+
 def resumable(directory, scene_xml):
     """Whether the app finds a stopped run of this scene to go on from (`--resume --validate-only`)."""
     result = subprocess.run([APP, scene_xml, '--resume', '--validate-only'], cwd=directory, capture_output=True)
@@ -93,7 +106,6 @@ def run_all(runs, work, jobs, carrying=False):
     failed = []
     seen = {}
     origin = {}
-    environment = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
     while pending or running:
         for run in list(pending):
             if len(running) >= jobs:
@@ -111,9 +123,8 @@ def run_all(runs, work, jobs, carrying=False):
                         pending.remove(run)
                         failed.append(run)
                     continue
-                if not os.path.exists(copy):
-                    shutil.copyfile(source, copy + '.copying')
-                    os.replace(copy + '.copying', copy)
+                if source:
+                    copy_restart(directory, scene, source)
             pending.remove(run)
             xml = scene_file(directory, level, scene)
             resume = resumable(directory, xml)
@@ -121,7 +132,7 @@ def run_all(runs, work, jobs, carrying=False):
                 seen[run] = len(step_lines(os.path.join(directory, scene + '.log')))
             log = open(os.path.join(directory, scene + '.log'), 'a' if resume else 'w')
             running[run] = (subprocess.Popen([APP, xml] + (['--resume'] if resume else []), cwd=directory, stdout=log,
-                                             stderr=subprocess.STDOUT, env=environment, start_new_session=True),
+                                             stderr=subprocess.STDOUT, env=RUN_ENVIRONMENT, start_new_session=True),
                             log, time.time())
             print(f'[{level} {scene}] ' + ('resumed from its last checkpoint' if resume else 'started'), flush=True)
         try:

@@ -8,19 +8,18 @@ resumed (`spatula --resume`), the app run with its ranks, and the complete run k
 Exit status: the app's (0: the run is complete in <work>/<level>/<scene>/)."""
 import argparse
 import os
-import shutil
 import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from study.archive import archive, archiving, restore  # noqa: E402
-from study.runner import APP, resumable  # noqa: E402
+from study.runner import APP, RUN_ENVIRONMENT, copy_restart, resumable  # noqa: E402
 from study.runs import complete  # noqa: E402
 from study.scenes import DEPENDS, OVERRIDES, parse_override, scene_file  # noqa: E402
 
 
 def launch(ranks, launcher):
-    """The command prefix that starts `ranks` ranks: none for one rank outside a batch job."""
+    """The command prefix that starts `ranks` ranks: none for one rank with mpiexec (the app alone)."""
     if launcher == 'srun':
         return ['srun', '--ntasks', str(ranks)]
     if ranks == 1:
@@ -47,17 +46,13 @@ def run(work, level, scene, ranks=1, launcher='mpiexec'):
         return 0
     dependency = DEPENDS.get(scene)
     if dependency:   # the complete rotation's checkpoints (a file dependency of the workflow)
-        copy = os.path.join(directory, scene + '.restart.h5')
-        if not os.path.exists(copy):
-            shutil.copyfile(os.path.join(directory, dependency, 'checkpoints.h5'), copy + '.copying')
-            os.replace(copy + '.copying', copy)
+        copy_restart(directory, scene, os.path.join(directory, dependency, 'checkpoints.h5'))
     xml = scene_file(directory, level, scene)
     resume = resumable(directory, xml)
-    environment = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
     with open(os.path.join(directory, scene + '.log'), 'a' if resume else 'w') as log:
         print(f'[{level} {scene}] ' + ('resumed from its last checkpoint' if resume else 'started'), flush=True)
         status = subprocess.run(launch(ranks, launcher) + [APP, xml] + (['--resume'] if resume else []),
-                                cwd=directory, stdout=log, stderr=subprocess.STDOUT, env=environment).returncode
+                                cwd=directory, stdout=log, stderr=subprocess.STDOUT, env=RUN_ENVIRONMENT).returncode
     if status == 0 and archiving() and complete(directory, scene):
         archive(work, level, scene)
     print(f'[{level} {scene}] ' + ('done' if status == 0 else f'failed (exit {status})'), flush=True)
