@@ -1,6 +1,6 @@
 // Solid assembly and Newton iteration timings on the spatula (no adhesion, the pad held at Z = 0).
 //
-//   solid_benchmark <level> <linear solver> [repetitions] [ordering=NAME] [low-rank=TOLERANCE] [lag=N]
+//   solid_benchmark <level> <linear solver> [repetitions] [ordering=NAME] [low-rank=TOLERANCE] [precision=single] [lag=N]
 //                   [refactor=cost|lag] [factor-only=1]                           (run with mpiexec -np 1 or 2)
 //
 // factor-only=1: just the MUMPS analysis, `repetitions` factorizations and a solve of the tangent at the undeformed
@@ -109,7 +109,7 @@ int main(int argc, char** argv)
   auto comm = Teuchos::DefaultComm<int>::getComm();
   if (argc < 3) {
     std::cerr << "usage: solid_benchmark <coarse|medium|fine> <mumps|gmres-ilu|gmres-amg> [repetitions] "
-                 "[ordering=NAME] [low-rank=TOLERANCE] [lag=N]\n";
+                 "[ordering=NAME] [low-rank=TOLERANCE] [precision=single] [lag=N]\n";
     return 2;
   }
   const std::string level = argv[1], solver_type = argv[2];
@@ -143,6 +143,8 @@ int main(int argc, char** argv)
       linear_parameters.mumps.ordering = *ordering;
     else if (key == "low-rank")
       linear_parameters.mumps.low_rank_tolerance = std::stod(value);
+    else if (key == "precision" && (value == "single" || value == "double"))
+      linear_parameters.mumps.single_precision = value == "single";
     else if (key == "lag")
       linear_parameters.lag = std::stoi(value);
     else if (key == "refactor" && refactor)

@@ -39,8 +39,13 @@ iterations' = 0; 'after' is the current defaults):
                           segments (a segment a session killed counts to its last logged step); its row is written
                           once the run has finished, with P_max, Delta u_z and Delta Pi_ext.
 
+  medium-pull-off-90, newton-per-state   the peel front's cases on the accurate medium mesh, the study scenes'
+                          settings against the faster path following: benchmarks/speedup_front.py says what each runs
+                          and which rows it writes (medium-pull-off-90 also writes medium-snap and two-ranks-90).
+
     benchmarks/speedup.py [--cases fine-newton-iteration medium-pull-off-45 peer-medium-iteration
-                                   medium-table6-study fine-pull-off-60] [--work DIR] [--docs] [--level LEVEL]
+                                   medium-table6-study fine-pull-off-60 medium-pull-off-90 newton-per-state]
+                          [--work DIR] [--docs] [--level LEVEL]
 
 Run it on a quiet machine (nothing else on the two cores): the default cases take about an hour, most of it the
 medium pull-off before the change; medium-table6-study (about 2 hours) and fine-pull-off-60 are asked for by name. With --docs the rows of the cases run replace theirs in docs/speedup.csv (each row carries the
@@ -61,6 +66,7 @@ sys.path.insert(0, os.path.join(ROOT, 'benchmarks'))
 from curves import RECORDED_BENCHMARK_START, pull_off_summary  # noqa: E402
 from scenes import benchmark_scene  # noqa: E402
 import peer_iteration  # noqa: E402
+from speedup_front import FRONT_CASES, FRONT_ROWS, front_case  # noqa: E402
 
 APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula'))
 SOLID = os.path.join(ROOT, 'build', 'benchmarks', 'solid_benchmark')
@@ -298,13 +304,13 @@ def peer_medium_iteration(work):
 
 
 CASE_ROWS = ['medium-pull-off-45', 'fine-newton-iteration', 'fine-newton-iteration-fresh-factors',
-             'peer-medium-iteration', 'medium-table6-study', 'fine-pull-off-60']
+             'peer-medium-iteration', 'medium-table6-study', 'fine-pull-off-60', *FRONT_ROWS]
 
 
 def main():
     cases = ['fine-newton-iteration', 'medium-pull-off-45', 'peer-medium-iteration']   # the hour-long default
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument('--cases', nargs='*', default=cases, choices=cases + ['medium-table6-study', 'fine-pull-off-60'])
+    parser.add_argument('--cases', nargs='*', default=cases, choices=cases + ['medium-table6-study', 'fine-pull-off-60', *FRONT_CASES])
     parser.add_argument('--work', default='speedup')
     parser.add_argument('--docs', action='store_true')
     parser.add_argument('--level', default='medium', choices=['coarse', 'medium'],
@@ -322,6 +328,8 @@ def main():
             rows += medium_pull_off_45(work)
         elif case == 'fine-pull-off-60':
             rows += fine_pull_off_60(work)
+        elif case in FRONT_CASES:
+            rows += front_case(case, work)
         elif case == 'medium-table6-study':
             rows += medium_table6_study(work, arguments.level)
         else:

@@ -75,15 +75,17 @@ else()
   set(SPATULA_TEST_KOKKOS_THREADS 1)
 endif()
 
-# MUMPS (distributed direct solver): Trilinos links it as a TPL; the headers are plain Debian ones.
+# MUMPS (distributed direct solver): Trilinos links it as a TPL; the headers are plain Debian ones. Double-precision
+# factors (dmumps) and, for 'Linear Solver/MUMPS/factor precision' = single, single-precision ones (smumps).
 find_path(MUMPS_INCLUDE_DIR dmumps_c.h)
 find_library(MUMPS_LIBRARY dmumps)
+find_library(MUMPS_SINGLE_LIBRARY smumps)
 find_library(MUMPS_COMMON_LIBRARY mumps_common)
-if(MUMPS_INCLUDE_DIR AND MUMPS_LIBRARY AND NOT TARGET Spatula::MUMPS)
+if(MUMPS_INCLUDE_DIR AND MUMPS_LIBRARY AND MUMPS_SINGLE_LIBRARY AND NOT TARGET Spatula::MUMPS)
   add_library(Spatula::MUMPS INTERFACE IMPORTED GLOBAL)
   set_target_properties(Spatula::MUMPS PROPERTIES
     INTERFACE_INCLUDE_DIRECTORIES "${MUMPS_INCLUDE_DIR}"
-    INTERFACE_LINK_LIBRARIES "${MUMPS_LIBRARY};${MUMPS_COMMON_LIBRARY};MPI::MPI_C")
+    INTERFACE_LINK_LIBRARIES "${MUMPS_LIBRARY};${MUMPS_SINGLE_LIBRARY};${MUMPS_COMMON_LIBRARY};MPI::MPI_C")
 endif()
 
 if(SPATULA_ENABLE_TESTS)

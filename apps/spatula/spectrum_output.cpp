@@ -13,6 +13,7 @@ SpectrumOutput::SpectrumOutput(discretization::DiscreteSystem& system, const sol
   auto exact = mumps;   // full-rank LDL^T: the inertia and the smallest eigenvalues need exact factors
   exact.symmetric = true;
   exact.low_rank_tolerance = 0.0;
+  exact.single_precision = false;
   solver_ = std::make_unique<solvers::MumpsSolver>(system.owned_map(), exact);
   if (file_.empty()) return;
   out_.open(file_);

@@ -40,6 +40,7 @@ MumpsSolver& EnergyMinimizer::solver()
     auto parameters = confirm_.linear_solver().parameters().mumps;
     parameters.symmetric = true;
     parameters.low_rank_tolerance = 0.0;
+    parameters.single_precision = false;
     solver_ = std::make_unique<MumpsSolver>(model_.system().owned_map(), parameters);
   }
   return *solver_;

@@ -91,7 +91,8 @@ namespace {
 // GMRES iterations per solve around MUMPS: an exact inverse needs one (a few more refine); old or low-rank factors more.
 int gmres_limit(const LinearSolverParameters& p)
 {
-  const bool approximate = p.lag > 0 || p.refactor != RefactorRule::lag || p.mumps.low_rank_tolerance > 0.0;
+  const bool approximate =
+      p.lag > 0 || p.refactor != RefactorRule::lag || p.mumps.low_rank_tolerance > 0.0 || p.mumps.single_precision;
   return approximate ? 60 : 10;
 }
 
@@ -208,9 +209,14 @@ Teuchos::RCP<Teuchos::ParameterList> stratimikos_list(const LinearSolverParamete
   auto list = Teuchos::rcp(new Teuchos::ParameterList("Stratimikos"));
   list->set("Linear Solver Type", "Belos");
   auto& belos = list->sublist("Linear Solver Types").sublist("Belos");
-  belos.set("Solver Type", "Pseudo Block GMRES");
-  auto& gmres = belos.sublist("Solver Types").sublist("Pseudo Block GMRES");
+  // Single-precision factors round each application anew (not one fixed linear operator): flexible GMRES keeps the
+  // preconditioned vectors it combines, so its solution reaches the tolerance as with double-precision factors.
+  const bool flexible = p.type == LinearSolverType::mumps && p.mumps.single_precision;
+  const char* solver = flexible ? "Block GMRES" : "Pseudo Block GMRES";
+  belos.set("Solver Type", solver);
+  auto& gmres = belos.sublist("Solver Types").sublist(solver);
   gmres.set("Convergence Tolerance", p.tolerance);
+  if (flexible) gmres.set("Flexible Gmres", true);
   if (p.type == LinearSolverType::mumps) {
     gmres.set("Maximum Iterations", gmres_limit(p));
     gmres.set("Num Blocks", gmres_limit(p));

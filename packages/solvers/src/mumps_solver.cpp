@@ -9,6 +9,7 @@
 #include <Tpetra_Import.hpp>
 
 #include <dmumps_c.h>
+#include <smumps_c.h>
 #include <malloc.h>
 #include <mpi.h>
 
@@ -19,6 +20,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace spatula::solvers {
 
@@ -71,6 +73,11 @@ void MumpsParameters::declare(Teuchos::ParameterList& list)
   parameters::declare_int(list, "low rank from", d.low_rank_from,
                           "unknowns from which the low-rank factorization is used (smaller systems: full rank)",
                           parameters::Range::closed(0, std::numeric_limits<int>::max()));
+  parameters::declare_string(list, "factor precision", d.single_precision ? "single" : "double",
+                             "single: the factors in single precision (MUMPS' SMUMPS: half the memory and the memory "
+                             "traffic of the solves), a GMRES preconditioner of the double-precision tangent (the Newton "
+                             "directions stay exact); the energy descents of jumps and the tangent spectrum keep "
+                             "double-precision factors, whose inertia they need", {"double", "single"});
 }
 
 MumpsParameters MumpsParameters::from(const Teuchos::ParameterList& list)
@@ -83,6 +90,7 @@ MumpsParameters MumpsParameters::from(const Teuchos::ParameterList& list)
   p.ordering = parameters::choice<MumpsOrdering>(list, "ordering", mumps_ordering_names());
   p.low_rank_tolerance = list.get<double>("low rank tolerance");
   p.low_rank_from = list.get<int>("low rank from");
+  p.single_precision = list.get<std::string>("factor precision") == "single";
   return p;
 }
 
@@ -93,12 +101,16 @@ double seconds_since(std::chrono::steady_clock::time_point start)
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// ICNTL/INFOG are 1-based in the MUMPS documentation.
-int& icntl(DMUMPS_STRUC_C& id, int index) { return id.icntl[index - 1]; }
-int infog(const DMUMPS_STRUC_C& id, int index) { return id.infog[index - 1]; }
-double rinfog(const DMUMPS_STRUC_C& id, int index) { return id.rinfog[index - 1]; }
+// The two MUMPS instances used: double precision (DMUMPS) and single precision (SMUMPS) factors.
+void call(DMUMPS_STRUC_C& id) { dmumps_c(&id); }
+void call(SMUMPS_STRUC_C& id) { smumps_c(&id); }
 
-std::string describe_error(const DMUMPS_STRUC_C& id)
+// ICNTL/INFOG are 1-based in the MUMPS documentation.
+template <class Id> int& icntl(Id& id, int index) { return id.icntl[index - 1]; }
+template <class Id> int infog(const Id& id, int index) { return id.infog[index - 1]; }
+template <class Id> double rinfog(const Id& id, int index) { return id.rinfog[index - 1]; }
+
+template <class Id> std::string describe_error(const Id& id)
 {
   const int code = infog(id, 1), detail = infog(id, 2);
   std::string what = "MUMPS error INFOG(1) = " + std::to_string(code) + ", INFOG(2) = " + std::to_string(detail);
@@ -109,13 +121,14 @@ std::string describe_error(const DMUMPS_STRUC_C& id)
 // Throws for a failed phase (INFOG(1) < 0), the same on every rank (MUMPS reports each rank's error to all):
 // OutOfMemory where the system refused MUMPS an allocation (-13: INFOG(2) scalars, negative in millions),
 // UnusableMatrix where the matrix is the cause (-10, numerically singular), a runtime_error otherwise.
-void check(const DMUMPS_STRUC_C& id, const char* phase)
+template <class Id> void check(const Id& id, const char* phase)
 {
   const int code = infog(id, 1);
   if (code >= 0) return;
   if (code == -13) {
     const double items = infog(id, 2) < 0 ? -1e6 * infog(id, 2) : double(infog(id, 2));
-    throw OutOfMemory(std::string("MUMPS ") + phase + " workspace (" + describe_error(id) + ")", 8.0 * items, true);
+    throw OutOfMemory(std::string("MUMPS ") + phase + " workspace (" + describe_error(id) + ")",
+                      sizeof(*id.a_loc) * items, true);
   }
   const std::string what = std::string("MUMPS ") + phase + " failed: " + describe_error(id);
   if (code == -10) throw UnusableMatrix(what + " (numerically singular matrix)");
@@ -139,22 +152,36 @@ void keep_freed_memory()
 
 }  // namespace
 
+// What the solver does whatever the precision of its factors.
 struct MumpsSolver::Implementation {
+  virtual ~Implementation() = default;
+  virtual void factor(const CrsMatrix& matrix) = 0;
+  virtual void solve(const MultiVector& X, MultiVector& Y, double alpha, double beta) const = 0;
   Teuchos::RCP<const Map> map;
+  MumpsParameters parameters;
+  mutable MumpsStatistics statistics;
+};
+
+namespace {
+
+// The factors of one MUMPS instance: Id = DMUMPS_STRUC_C (double) or SMUMPS_STRUC_C (single; the matrix and the
+// right-hand sides are rounded to float on their way in, the solutions widened on their way out).
+template <class Id>
+struct Factors final : MumpsSolver::Implementation {
+  using Real = std::remove_pointer_t<decltype(Id::a_loc)>;
   Teuchos::RCP<const Map> root_map;   // every unknown on rank 0
   Teuchos::RCP<const Import> to_root;
-  MumpsParameters parameters;
-  DMUMPS_STRUC_C id{};
+  Id id{};
   bool analysed = false;
   std::vector<int> rows, columns;   // 1-based global indices of the entries handed to MUMPS
-  std::vector<double> values;
+  std::vector<Real> values;
   std::size_t analysed_entries = 0;   // stored entries of the matrix the analysis was done for
-  mutable std::vector<double> right_hand_side;
-  mutable MumpsStatistics statistics;
+  mutable std::vector<Real> right_hand_side;
 
-  Implementation(Teuchos::RCP<const Map> map_, const MumpsParameters& parameters_)
-      : map(std::move(map_)), parameters(parameters_)
+  Factors(Teuchos::RCP<const Map> map_, const MumpsParameters& parameters_)
   {
+    map = std::move(map_);
+    parameters = parameters_;
     const auto comm = map->getComm();
     const auto mpi_comm = Teuchos::rcp_dynamic_cast<const Teuchos::MpiComm<int>>(comm);
     if (mpi_comm.is_null()) throw std::logic_error("MumpsSolver needs an MPI communicator");
@@ -172,7 +199,7 @@ struct MumpsSolver::Implementation {
     id.par = 1;   // rank 0 works too
     id.sym = parameters.symmetric ? 2 : 0;
     id.job = -1;
-    dmumps_c(&id);
+    call(id);
     icntl(id, 1) = -1;   // no MUMPS printing: errors are reported through exceptions
     icntl(id, 2) = -1;
     icntl(id, 3) = -1;
@@ -197,10 +224,10 @@ struct MumpsSolver::Implementation {
     }
   }
 
-  ~Implementation()
+  ~Factors() override
   {
     id.job = -2;
-    dmumps_c(&id);
+    call(id);
   }
 
   void collect(const CrsMatrix& matrix, bool pattern)
@@ -224,12 +251,12 @@ struct MumpsSolver::Implementation {
           rows.push_back(static_cast<int>(row + 1));
           columns.push_back(static_cast<int>(column + 1));
         }
-        values.push_back(entries(k));
+        values.push_back(static_cast<Real>(entries(k)));
       }
     }
   }
 
-  void factor(const CrsMatrix& matrix)
+  void factor(const CrsMatrix& matrix) override
   {
     if (!matrix.getRowMap()->isSameAs(*map)) throw std::logic_error("MumpsSolver: matrix row map differs");
     // The decision must be the same on every rank (MUMPS calls are collective).
@@ -237,7 +264,7 @@ struct MumpsSolver::Implementation {
     Teuchos::reduceAll(*map->getComm(), Teuchos::REDUCE_MAX, changed, Teuchos::outArg(changed));
     const bool pattern = changed != 0;
     collect(matrix, pattern);
-    int finite = std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
+    int finite = std::all_of(values.begin(), values.end(), [](Real v) { return std::isfinite(v); });
     Teuchos::reduceAll(*map->getComm(), Teuchos::REDUCE_MIN, finite, Teuchos::outArg(finite));
     if (!finite) throw UnusableMatrix("MUMPS factorization refused: the tangent has non-finite entries");
     id.n = static_cast<int>(map->getGlobalNumElements());
@@ -249,7 +276,7 @@ struct MumpsSolver::Implementation {
       Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: linear solve (MUMPS analysis)"));
       const auto start = std::chrono::steady_clock::now();
       id.job = 1;
-      dmumps_c(&id);
+      call(id);
       check(id, "analysis");
       statistics.ordering_used = ordering_name(infog(id, 7));
       const MumpsOrdering asked = parameters.ordering;
@@ -267,7 +294,7 @@ struct MumpsSolver::Implementation {
     // Pivoting on indefinite matrices can need more workspace than the analysis estimated: retry with more.
     for (int attempt = 0;; ++attempt) {
       id.job = 2;
-      dmumps_c(&id);
+      call(id);
       const int code = infog(id, 1);
       const bool workspace = code == -8 || code == -9 || code == -14 || code == -15 || code == -17 || code == -20;
       if (!workspace || attempt == 4) break;
@@ -287,7 +314,7 @@ struct MumpsSolver::Implementation {
     statistics.null_pivots = infog(id, 28);
   }
 
-  void solve(const MultiVector& X, MultiVector& Y, double alpha, double beta) const
+  void solve(const MultiVector& X, MultiVector& Y, double alpha, double beta) const override
   {
     Teuchos::TimeMonitor timer(*Teuchos::TimeMonitor::getNewTimer("spatula: linear solve (MUMPS solve)"));
     const auto start = std::chrono::steady_clock::now();
@@ -303,12 +330,12 @@ struct MumpsSolver::Implementation {
         std::copy(data.begin(), data.end(), right_hand_side.begin() + v * n);
       }
     }
-    auto& mutable_id = const_cast<DMUMPS_STRUC_C&>(id);
+    auto& mutable_id = const_cast<Id&>(id);
     mutable_id.nrhs = static_cast<int>(vectors);
     mutable_id.lrhs = n;
     mutable_id.rhs = is_root ? right_hand_side.data() : nullptr;
     mutable_id.job = 3;
-    dmumps_c(&mutable_id);
+    call(mutable_id);
     check(id, "solve");
     if (is_root)
       for (std::size_t v = 0; v < vectors; ++v) {
@@ -324,8 +351,17 @@ struct MumpsSolver::Implementation {
   }
 };
 
+std::unique_ptr<MumpsSolver::Implementation> make_factors(Teuchos::RCP<const Map> map,
+                                                          const MumpsParameters& parameters)
+{
+  if (parameters.single_precision) return std::make_unique<Factors<SMUMPS_STRUC_C>>(std::move(map), parameters);
+  return std::make_unique<Factors<DMUMPS_STRUC_C>>(std::move(map), parameters);
+}
+
+}  // namespace
+
 MumpsSolver::MumpsSolver(Teuchos::RCP<const Map> map, const MumpsParameters& parameters)
-    : implementation_(std::make_unique<Implementation>(std::move(map), parameters))
+    : implementation_(make_factors(std::move(map), parameters))
 {
 }
 

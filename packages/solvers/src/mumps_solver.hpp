@@ -41,6 +41,7 @@ struct MumpsParameters {
   MumpsOrdering ordering = MumpsOrdering::automatic;
   double low_rank_tolerance = 1e-5;   // block low-rank factorization (ICNTL(35), CNTL(7)); 0: full rank
   int low_rank_from = 100000;          // ... for systems of at least this many unknowns (smaller: full rank)
+  bool single_precision = false;       // factors in single precision (SMUMPS): a GMRES preconditioner, not exact
   static void declare(Teuchos::ParameterList& list);
   static MumpsParameters from(const Teuchos::ParameterList& list);
 };
@@ -80,8 +81,9 @@ public:
   const MumpsStatistics& statistics() const;
   void count_reuse();   // a stale factorization kept as preconditioner (see LinearSolverParameters::lag)
 
+  struct Implementation;   // the factors of one precision (mumps_solver.cpp)
+
 private:
-  struct Implementation;
   std::unique_ptr<Implementation> implementation_;
 };
 

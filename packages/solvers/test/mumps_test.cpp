@@ -157,6 +157,27 @@ TEST(Mumps, LowRankFactorsAreAnApproximateInverse)
   EXPECT_LT(relative_residual(*matrix, exact), 1e-13);
 }
 
+TEST(Mumps, SinglePrecisionFactorsAreAnApproximateInverseWithTheSameInertia)
+{
+  // Ill-conditioned like the spatula's tangent (the smallest eigenvalue about 5e-6 of the largest): single-precision
+  // factors solve it to about their rounding times the condition number, far from double's, and count the same
+  // negative eigenvalues where none is near zero.
+  const auto matrix = shifted_laplacian(700, 0.0);
+  solvers::MumpsParameters parameters;
+  parameters.single_precision = true;
+  solvers::MumpsSolver single(matrix->getRowMap(), parameters);
+  single.factor(*matrix);
+  const double residual = relative_residual(*matrix, single);
+  EXPECT_LT(residual, 1e-4);
+  EXPECT_GT(residual, 1e-12);   // not double precision's
+  EXPECT_EQ(single.statistics().negative_pivots, 0);
+  const auto indefinite = shifted_laplacian(200, 0.5);
+  solvers::MumpsSolver shifted(indefinite->getRowMap(), parameters);
+  shifted.factor(*indefinite);
+  EXPECT_EQ(shifted.statistics().negative_pivots, eigenvalues_below(200, 0.5));
+  EXPECT_LT(relative_residual(*indefinite, shifted), 1e-4);
+}
+
 }  // namespace
 
 // The solver the Newton iterations use, through Thyra as NOX calls it: each linear solver reaches the solution of a
@@ -223,6 +244,12 @@ TEST(LinearSolverFactory, EverySolverReachesTheSolutionOfAChangingSequence)
   EXPECT_LT(cost.worst_error, 1e-8);
   EXPECT_EQ(cost.factorizations + cost.reused, 5);
   EXPECT_GE(cost.factorizations, 1);
+
+  solvers::LinearSolverParameters single;   // the defaults with single-precision factors: GMRES refines to double's
+  single.mumps.single_precision = true;
+  const auto refined = solve_sequence(single);
+  EXPECT_LT(refined.worst_error, 1e-8);
+  EXPECT_EQ(refined.factorizations + refined.reused, 5);
 
   solvers::LinearSolverParameters ilu;   // Belos GMRES with Ifpack2 ILU(1): no MUMPS at all
   ilu.type = solvers::LinearSolverType::gmres_ilu;
