@@ -8,6 +8,11 @@ LEVELS = tuple(ELEMENT_SIZE)   # coarse to fine
 # changes the discretized geometry (a fuller shaft section: +8 % volume, docs/validation.md), so levels with different layer counts
 # are not one refinement sequence in the element size alone.
 LAYERS = {'coarse': 4, 'medium': 4, 'fine': 10}
+# The equal-area sequence (`Mesh/section` = equal area, 4 layers throughout, one refinement sequence in the element
+# size alone): the coarse mesh refined 2 x 2 and 3 x 3 in-plane (`Mesh/refinement factor`) and the medium mesh
+# (the coarse one's in-plane factor 4), each kept in results/<name>/.
+EQUAL_AREA_SIZE = {'coarse-x2-equal-area': 1.0 / 2.0, 'coarse-x3-equal-area': 1.0 / 3.0, 'medium-equal-area': 1.0 / 4.0}
+LAYERS.update({name: 4 for name in EQUAL_AREA_SIZE})
 # Where only two levels ran: the order of convergence assumed (the error benchmark observed 2.2 for P_max from k = 1,
 # 2, 4, docs/error-vs-time.md).
 ASSUMED_ORDER = 2.0
@@ -43,12 +48,13 @@ def layers_remark(levels):
             '): the estimate mixes the in-plane error with a change of the discretized geometry')
 
 
-def richardson(by_level):
+def richardson(by_level, element_size=ELEMENT_SIZE):
     """The finest value, an estimate of its discretization error, the extrapolated value and a remark (the order
-    observed from three levels, or assumed with two; why the estimate is not reliable where it is not)."""
-    levels = [level for level in LEVELS if level in by_level]
+    observed from three levels, or assumed with two; why the estimate is not reliable where it is not). The levels
+    are those of `element_size` (the paper's by default, or EQUAL_AREA_SIZE), coarse to fine."""
+    levels = [level for level in element_size if level in by_level]
     values = [by_level[level] for level in levels]
-    sizes = [ELEMENT_SIZE[level] for level in levels]
+    sizes = [element_size[level] for level in levels]
     finest, next_finest = values[-1], values[-2]
     magnitudes = [abs(v) for v in values]
     path_change = (f'; **not reliable**: the levels differ by more than a factor {PATH_CHANGE:g} (a run followed '

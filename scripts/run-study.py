@@ -48,7 +48,7 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from convergence import LEVELS  # noqa: E402
 from run_lock import DirectoryInUse  # noqa: E402
-from study.archive import ARCHIVE, STOPPED_SUFFIX, archive, archiving, linked_equal_area_medium, restore  # noqa: E402
+from study.archive import ARCHIVE, STOPPED_SUFFIX, archive, archiving, linked_equal_area, restore  # noqa: E402
 from study.figures import field_pictures, plots  # noqa: E402
 from study.runner import APP, run_all  # noqa: E402
 from study.runs import complete  # noqa: E402
@@ -131,9 +131,8 @@ def main():
         docs = os.path.join(ROOT, 'docs')
         pictures = plots(results, docs)
         pictures += field_pictures([results[level][0] for level in reversed(LEVELS) if level in results], docs)
-        accurate = linked_equal_area_medium(arguments.work)
-        if accurate:
-            accurate = (accurate, write_tables(accurate, STUDIES['all'], 'medium, equal area')[1])
+        accurate = {name: (directory, write_tables(directory, STUDIES['all'], name)[1])
+                    for name, directory in linked_equal_area(arguments.work).items()}
         template = open(os.path.join(ROOT, 'docs', 'validation-notes.md')).read()
         with open(os.path.join(docs, 'validation.md'), 'w') as out:
             out.write(template.replace('{{GLANCE}}', glance(results, accurate)).replace('{{TABLES}}', text).replace(

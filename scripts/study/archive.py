@@ -4,6 +4,7 @@ import os
 import re
 import shutil
 
+from convergence import EQUAL_AREA_SIZE
 from curves import pad_slip, pull_off_summary
 from run_lock import directory_lock
 from study.runs import complete
@@ -22,9 +23,9 @@ def archiving():
     return not OVERRIDES
 
 
-def archive(work, level, scene):
-    """Copies the complete run's kept files into ARCHIVE/<level>/<scene>/."""
-    source, kept = os.path.join(work, level, scene), os.path.join(ARCHIVE, level, scene)
+def archive(work, level, scene, kept_as=None):
+    """Copies the complete run's kept files into ARCHIVE/<level>/<scene>/ (ARCHIVE/<kept_as>/<scene>/ where named)."""
+    source, kept = os.path.join(work, level, scene), os.path.join(ARCHIVE, kept_as or level, scene)
     os.makedirs(kept, exist_ok=True)
     if scene in {name for name, _, _ in STICTION_RUNS}:   # the slip needs the fields, which are not kept
         try:
@@ -125,20 +126,21 @@ def restore_stopped(work, runs):
     return restored
 
 
-# The paper's studies on the medium mesh with the equal-area section (results/medium-equal-area/README.md): the
-# results page sets their values beside the named levels'.
-EQUAL_AREA_MEDIUM = os.path.join(ARCHIVE, 'medium-equal-area')
-
-
-def linked_equal_area_medium(work):
-    """<work>/medium-equal-area/ with a link to each of those runs (their tables are written there, not in
-    results/), or None where they are not kept."""
-    if not os.path.isdir(EQUAL_AREA_MEDIUM):
-        return None
-    directory = os.path.join(work, 'medium-equal-area')
-    os.makedirs(directory, exist_ok=True)
-    for scene in sorted(os.listdir(EQUAL_AREA_MEDIUM)):
-        source, link = os.path.join(EQUAL_AREA_MEDIUM, scene), os.path.join(directory, scene)
-        if scene != 'tables' and os.path.isdir(source) and not os.path.lexists(link):
-            os.symlink(source, link)
-    return directory
+# The paper's studies on the equal-area sequence (convergence.EQUAL_AREA_SIZE: coarse refined 2 x 2 and 3 x 3, and
+# medium, each with `Mesh/section` = equal area; results/<name>/README.md): the results page sets the medium mesh's
+# values, with an error bar over the sequence, beside the named levels'.
+def linked_equal_area(work):
+    """{name: <work>/<name>/} for each kept level of the equal-area sequence, each holding a link to each of its runs
+    (their tables are written there, not in results/)."""
+    linked = {}
+    for name in EQUAL_AREA_SIZE:
+        kept = os.path.join(ARCHIVE, name)
+        if not os.path.isdir(kept):
+            continue
+        directory = linked[name] = os.path.join(work, name)
+        os.makedirs(directory, exist_ok=True)
+        for scene in sorted(os.listdir(kept)):
+            source, link = os.path.join(kept, scene), os.path.join(directory, scene)
+            if scene != 'tables' and os.path.isdir(source) and not os.path.lexists(link):
+                os.symlink(source, link)
+    return linked

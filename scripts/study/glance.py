@@ -4,7 +4,7 @@ error bar, with the reason where it is known (scripts/study/glance-reasons.csv).
 import csv
 import os
 
-from convergence import LEVELS, richardson
+from convergence import EQUAL_AREA_SIZE, LEVELS, richardson
 from study.tables import PAPER_TABLE4, PAPER_TABLE5_START, PAPER_TABLE6, rotation_curve, table4
 
 PULL_OFF_ANGLES = (45, 60, 75, 90)
@@ -42,30 +42,44 @@ def best(by_level):
     return finest, estimate, levels[-1], 'not reliable' not in remark and 'asymptotic' not in remark
 
 
+def equal_area(by_level):
+    """(the medium mesh's value, its error bar over the equal-area sequence or None, whether it is reliable) from
+    {equal-area level: value}, or None where the medium mesh did not run the scene."""
+    if 'medium-equal-area' not in by_level:
+        return None
+    if len(by_level) == 1:
+        return by_level['medium-equal-area'], None, False
+    value, estimate, _, remark = richardson(by_level, EQUAL_AREA_SIZE)
+    return value, estimate, 'not reliable' not in remark and 'asymptotic' not in remark
+
+
+def with_bar(value, estimate, reliable):
+    return digits(value) + (f' ± {estimate:.2g}' + ('' if reliable else ' (rough)') if estimate is not None else '')
+
+
 def digits(value):
     return f'{value:.3g}' if abs(value) < 10 else f'{value:.4g}' if abs(value) < 1000 else f'{value:.0f}'
 
 
 def cells(result, paper, why='', accurate=None):
-    """ours ± error bar, its mesh, the equal-area medium mesh's value, the paper's value, the difference, the flag
-    and why (where the flag is up)."""
-    equal_area = digits(accurate) if accurate is not None else ''
+    """ours ± error bar, its mesh, the equal-area medium mesh's value ± its bar (equal_area() of the sequence), the
+    paper's value, the difference, the flag and why (where the flag is up)."""
+    accurate_text = with_bar(*accurate) if accurate is not None else ''
     if result is None:
-        return ['not run', '', equal_area, str(paper) if paper is not None else 'held out', '', '', '']
+        return ['not run', '', accurate_text, str(paper) if paper is not None else 'held out', '', '', '']
     value, estimate, level, reliable = result
-    ours = digits(value) + (f' ± {estimate:.2g}' if estimate is not None else '')
-    bar = ('' if estimate is not None and reliable else ' (rough)' if estimate is not None else ' (one level)')
+    ours = with_bar(value, estimate, reliable) + ('' if estimate is not None else ' (one level)')
     if paper is None:
-        return [ours + bar, level, equal_area, 'held out', '', '', '']
+        return [ours, level, accurate_text, 'held out', '', '', '']
     difference = 100.0 * (value / paper - 1.0)
     differs = estimate is None or abs(value - paper) > estimate
     flag = ('**more than the error bar**' if estimate is not None and differs else
             'no error bar' if estimate is None else 'within the error bar')
-    return [ours + bar, level, equal_area, str(paper), f'{difference:+.1f} %', flag, why if differs else '']
+    return [ours, level, accurate_text, str(paper), f'{difference:+.1f} %', flag, why if differs else '']
 
 
 def header(title):
-    return [f'### {title}\n', '| case | quantity | ours ± error bar | mesh | medium, equal area | paper | ours − paper '
+    return [f'### {title}\n', '| case | quantity | ours ± error bar | mesh | medium, equal area ± error bar | paper | ours − paper '
             '| difference | why (where known) |', '|---|---|---|---|---|---|---|---|---|']
 
 
@@ -79,13 +93,16 @@ def table4_rows(directory):
 
 def glance(results, accurate=None):
     """Markdown: the tables at a glance from results = {level: (work directory, pull-off summaries)}, with the value
-    of each cell on the medium mesh with the equal-area section beside it where accurate = (its work directory, its
-    summaries) is given."""
-    accurate_table4 = table4_rows(accurate[0]) if accurate else {}
-    accurate_summaries = accurate[1] if accurate else {}
+    of each cell on the medium mesh with the equal-area section, ± its error bar over the equal-area sequence, beside
+    it where accurate = {equal-area level: (its work directory, its summaries)} is given."""
+    accurate = accurate or {}
+    accurate_table4 = {level: table4_rows(directory) for level, (directory, _) in accurate.items()}
 
     def accurate_value(scene, key):
-        return accurate_summaries[scene][key] if scene in accurate_summaries else None
+        return equal_area({level: s[scene][key] for level, (_, s) in accurate.items() if scene in s})
+
+    def accurate_table4_value(label, column):
+        return equal_area({level: rows[label][column] for level, rows in accurate_table4.items() if label in rows})
 
     lines = []
     table4_by_level = {}
@@ -98,9 +115,9 @@ def glance(results, accurate=None):
         for label, key in TABLE4_ROWS:
             for index, (column, name) in enumerate(TABLE4_QUANTITIES):
                 by_level = {level: rows[label][column] for level, rows in table4_by_level.items() if label in rows}
-                equal_area = accurate_table4[label][column] if label in accurate_table4 else None
                 lines.append(f'| θ_y = {TABLE4_CASES.get(label, label + "°")} | {name} | ' + ' | '.join(
-                    cells(best(by_level), PAPER_TABLE4[key][index], reason('table4', label, name), equal_area)) + ' |')
+                    cells(best(by_level), PAPER_TABLE4[key][index], reason('table4', label, name),
+                          accurate_table4_value(label, column))) + ' |')
         lines.append('')
     summaries = {level: summary for level, (_, summary) in results.items()}
     lines += header('Table 5: the work before the lift, Π_ext,0 / Π_c0')

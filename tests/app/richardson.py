@@ -7,7 +7,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'scripts'))
-from convergence import ELEMENT_SIZE, observed_order, richardson  # noqa: E402
+from convergence import ELEMENT_SIZE, EQUAL_AREA_SIZE, observed_order, richardson  # noqa: E402
 from expectations import check, finish  # noqa: E402
 
 
@@ -35,4 +35,10 @@ check('layers through the pad (4, 4, 10)' in remark, f'levels with 4, 4 and 10 l
 check('layers' not in richardson({'coarse': 11.0, 'medium': 6.7})[3], 'coarse and medium have the same layers')
 remark = richardson({'coarse': 10.98, 'medium': 190.8 / 19.08, 'fine': 9.0})[3]
 check('asymptotic' in remark and 'layers through the pad' in remark, f'non-monotone with mixed layers: {remark}')
+# The equal-area sequence (h = 1/2, 1/3, 1/4, one layer count): the same recovery over its own sizes.
+values = {level: 42.0 - 3.0 * size ** 1.7 for level, size in EQUAL_AREA_SIZE.items()}
+finest, estimate, extrapolated, remark = richardson(values, EQUAL_AREA_SIZE)
+check(abs(extrapolated - 42.0) < 1e-9 and 'order 1.70 observed' in remark and 'layers' not in remark,
+      f'equal-area sequence: {extrapolated}, {remark}')
+check(finest == values['medium-equal-area'], 'the equal-area sequence ends at the medium mesh')
 finish('richardson: manufactured values recovered')
