@@ -72,8 +72,9 @@ APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula
 SOLID = os.path.join(ROOT, 'build', 'benchmarks', 'solid_benchmark')
 ENVIRONMENT = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
 MPI = ['mpiexec', '--allow-run-as-root', '-np', '2']
-OLD_SOLID = ['refactor=lag', 'lag=4', 'low-rank=0']
-OLD_SCENE = {'Linear Solver': {'refactor': 'lag', 'lag': 4, 'MUMPS': {'low rank tolerance': 0.0}},
+OLD_SOLID = ['refactor=lag', 'lag=4', 'low-rank=0', 'precision=double']
+OLD_SCENE = {'Linear Solver': {'refactor': 'lag', 'lag': 4,
+                               'MUMPS': {'low rank tolerance': 0.0, 'factor precision': 'double'}},
              'Nonlinear Solver': {'non-contracting iterations': 0, 'short steps': 0, 'absolute tolerance': 1e-9,
                                   'line search': 'backtrack'},
              'Steps': {'predictor': 'secant'}}
@@ -97,7 +98,7 @@ def solid(options):
 
 
 def fine_newton_iteration():
-    fresh = solid(['refactor=lag', 'lag=0', 'low-rank=0'])
+    fresh = solid(['refactor=lag', 'lag=0', 'low-rank=0', 'precision=double'])
     before = solid(OLD_SOLID)
     after = solid([])
     def row(case, old):

@@ -1,7 +1,7 @@
 """The peel front's cases of benchmarks/speedup.py: the medium pull-offs of the Table 6 study on the accurate medium
 mesh (`Mesh/section` = equal area), each from the study rotation's checkpoint kept in results/medium-equal-area, with
-the study scenes' settings (before) against the faster path following (after, AFTER below), one run each in one
-sitting, one rank unless named.
+the study scenes' settings and double-precision factors (before) against the faster path following (after, AFTER
+below), one run each in one sitting, one rank unless named.
 
   medium-pull-off-90   pull-off at 90 deg, before and after on 1 rank, after on 2 ranks, and before with
                        single-precision factors alone; writes four rows: medium-pull-off-90 (wall seconds, tangents,
@@ -31,6 +31,8 @@ MESH = ['Mesh/level=medium', 'Mesh/section=equal area', 'Output/field interval=0
 # "Longer lift steps where the path is smooth"), and single-precision factors (docs/solvers.md).
 SINGLE = ['Linear Solver/MUMPS/factor precision=single']
 AFTER = ['Loading/Lift Steps/maximum=40', 'Loading/Lift Steps/curve tolerance=1e-3'] + SINGLE
+# The study scenes' settings before: double-precision factors (the default before single precision was measured).
+BEFORE = ['Linear Solver/MUMPS/factor precision=double']
 QUANTITIES = ('P_max_nN', 'delta_u_z_nm', 'delta_Pi_ext_1e-18J')
 FRONT_CASES = ('medium-pull-off-90', 'newton-per-state')
 FRONT_ROWS = ('medium-pull-off-90', 'single-precision-90', 'medium-snap', 'two-ranks-90', 'newton-per-state')
@@ -89,7 +91,7 @@ def counts(r):
 
 
 def pull_off_90(work):
-    before = run(work, 90, 'before', [])
+    before = run(work, 90, 'before', BEFORE)
     single = run(work, 90, 'single-precision', SINGLE)
     after = run(work, 90, 'after', AFTER)
     two = run(work, 90, 'after-2-ranks', AFTER, ranks=2)
@@ -109,7 +111,7 @@ def pull_off_90(work):
 
 
 def newton_per_state(work):
-    before = run(work, 60, 'before', [])
+    before = run(work, 60, 'before', BEFORE)
     after = run(work, 60, 'after', AFTER)
     return [dict(case='newton-per-state', before_s=round(before['wall_s'], 1), after_s=round(after['wall_s'], 1),
                  ratio=round(before['wall_s'] / after['wall_s'], 2), max_result_change_pct=change_pct(before, after),

@@ -54,7 +54,8 @@ void LinearSolverParameters::declare(Teuchos::ParameterList& list)
                           Range::closed(1, 100000));
   parameters::declare_int(list, "ILU fill level", d.fill_level,
                           "level of fill of ILU(k) (gmres-ilu)", Range::closed(0, 8));
-  MumpsParameters::declare(parameters::declare_sublist(list, "MUMPS", "direct solver options"));
+  MumpsParameters::declare(parameters::declare_sublist(list, "MUMPS", "direct solver options"),
+                           LinearSolverParameters{}.mumps);
   parameters::declare_int(list, "lag", d.lag,
                           "mumps: Newton tangents one factorization may serve as preconditioner (0: refactor always)",
                           Range::closed(0, 1000));
@@ -210,8 +211,9 @@ Teuchos::RCP<Teuchos::ParameterList> stratimikos_list(const LinearSolverParamete
   list->set("Linear Solver Type", "Belos");
   auto& belos = list->sublist("Linear Solver Types").sublist("Belos");
   // Single-precision factors round each application anew (not one fixed linear operator): flexible GMRES keeps the
-  // preconditioned vectors it combines, so its solution reaches the tolerance as with double-precision factors.
-  const bool flexible = p.type == LinearSolverType::mumps && p.mumps.single_precision;
+  // preconditioned vectors it combines, so its solution reaches the tolerance as with double-precision factors
+  // (also gmres-amg's, whose MUMPS fallback has them).
+  const bool flexible = p.type != LinearSolverType::gmres_ilu && p.mumps.single_precision;
   const char* solver = flexible ? "Block GMRES" : "Pseudo Block GMRES";
   belos.set("Solver Type", solver);
   auto& gmres = belos.sublist("Solver Types").sublist(solver);

@@ -53,7 +53,13 @@ struct LinearSolverParameters {
   double tolerance = 1e-10;     // relative residual of each linear solve
   int maximum_iterations = 500; // Krylov iterations (gmres-ilu, gmres-amg)
   int fill_level = 1;           // ILU(k) level of fill (gmres-ilu)
-  MumpsParameters mumps;
+  // The Newton tangents' factors: MUMPS' defaults but single precision (a preconditioner of flexible GMRES, which
+  // keeps the directions' tolerance; measured in docs/performance.md, "The peel front's cases").
+  MumpsParameters mumps = [] {
+    MumpsParameters newton;
+    newton.single_precision = true;
+    return newton;
+  }();
   // With refactor = lag: tangents a MUMPS factorization may serve as preconditioner (0: refactor always; what 4 saves
   // against 0: docs/error-vs-time.md).
   int lag = 4;

@@ -47,9 +47,8 @@ std::string ordering_name(int code)
 
 }  // namespace
 
-void MumpsParameters::declare(Teuchos::ParameterList& list)
+void MumpsParameters::declare(Teuchos::ParameterList& list, const MumpsParameters& d)
 {
-  const MumpsParameters d;   // the defaults
   parameters::declare_bool(list, "symmetric", d.symmetric,
                            "LDL^T factorization (symmetric indefinite); false: LU");
   parameters::declare_int(list, "memory relaxation", d.memory_relaxation, "MUMPS ICNTL(14): extra workspace [%]",
@@ -79,6 +78,8 @@ void MumpsParameters::declare(Teuchos::ParameterList& list)
                              "directions stay exact); the energy descents of jumps and the tangent spectrum keep "
                              "double-precision factors, whose inertia they need", {"double", "single"});
 }
+
+void MumpsParameters::declare(Teuchos::ParameterList& list) { declare(list, MumpsParameters{}); }
 
 MumpsParameters MumpsParameters::from(const Teuchos::ParameterList& list)
 {
@@ -119,16 +120,18 @@ template <class Id> std::string describe_error(const Id& id)
 }
 
 // Throws for a failed phase (INFOG(1) < 0), the same on every rank (MUMPS reports each rank's error to all):
-// OutOfMemory where the system refused MUMPS an allocation (-13: INFOG(2) scalars, negative in millions),
+// OutOfMemory where the system refused MUMPS an allocation (-13: INFOG(2) scalars, negative in millions; -7: the
+// analysis' integers),
 // UnusableMatrix where the matrix is the cause (-10, numerically singular), a runtime_error otherwise.
 template <class Id> void check(const Id& id, const char* phase)
 {
   const int code = infog(id, 1);
   if (code >= 0) return;
-  if (code == -13) {
+  if (code == -13 || code == -7) {   // -7: the analysis' integer workspace (INFOG(2) integers)
     const double items = infog(id, 2) < 0 ? -1e6 * infog(id, 2) : double(infog(id, 2));
-    throw OutOfMemory(std::string("MUMPS ") + phase + " workspace (" + describe_error(id) + ")",
-                      sizeof(*id.a_loc) * items, true);
+    const double item_bytes = code == -7 ? sizeof(int) : sizeof(*id.a_loc);
+    throw OutOfMemory(std::string("MUMPS ") + phase + " workspace (" + describe_error(id) + ")", item_bytes * items,
+                      true);
   }
   const std::string what = std::string("MUMPS ") + phase + " failed: " + describe_error(id);
   if (code == -10) throw UnusableMatrix(what + " (numerically singular matrix)");

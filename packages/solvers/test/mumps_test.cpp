@@ -225,7 +225,8 @@ SolveCounts solve_sequence(const solvers::LinearSolverParameters& parameters, Gl
 
 TEST(LinearSolverFactory, EverySolverReachesTheSolutionOfAChangingSequence)
 {
-  solvers::LinearSolverParameters fresh;   // a factorization for every system
+  solvers::LinearSolverParameters fresh;   // a double-precision factorization for every system
+  fresh.mumps.single_precision = false;
   fresh.refactor = solvers::RefactorRule::lag;
   fresh.lag = 0;
   const auto every = solve_sequence(fresh);
@@ -240,14 +241,16 @@ TEST(LinearSolverFactory, EverySolverReachesTheSolutionOfAChangingSequence)
   EXPECT_EQ(kept.factorizations, 1);
   EXPECT_EQ(kept.reused, 4);
 
-  const auto cost = solve_sequence(solvers::LinearSolverParameters{});   // the default: measured time decides
+  solvers::LinearSolverParameters double_factors;   // the cost rule with double-precision factors
+  double_factors.mumps.single_precision = false;
+  const auto cost = solve_sequence(double_factors);
   EXPECT_LT(cost.worst_error, 1e-8);
   EXPECT_EQ(cost.factorizations + cost.reused, 5);
   EXPECT_GE(cost.factorizations, 1);
 
-  solvers::LinearSolverParameters single;   // the defaults with single-precision factors: GMRES refines to double's
-  single.mumps.single_precision = true;
-  const auto refined = solve_sequence(single);
+  // The defaults: single-precision factors, which flexible GMRES refines to double precision's solutions.
+  const auto refined = solve_sequence(solvers::LinearSolverParameters{});
+  EXPECT_TRUE(solvers::LinearSolverParameters{}.mumps.single_precision);
   EXPECT_LT(refined.worst_error, 1e-8);
   EXPECT_EQ(refined.factorizations + refined.reused, 5);
 

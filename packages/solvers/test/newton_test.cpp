@@ -151,7 +151,7 @@ TEST(Parameters, AnEmptyListReadsBackAsTheTypedDefaults)
   expect_same_fields(linear, Linear{}, &Linear::type, &Linear::tolerance, &Linear::maximum_iterations,
                      &Linear::fill_level, &Linear::lag, &Linear::lag_applications, &Linear::refactor);
   using Mumps = solvers::MumpsParameters;
-  expect_same_fields(linear.mumps, Mumps{}, &Mumps::symmetric, &Mumps::memory_relaxation, &Mumps::verbose,
+  expect_same_fields(linear.mumps, Linear{}.mumps, &Mumps::symmetric, &Mumps::memory_relaxation, &Mumps::verbose,
                      &Mumps::keep_workspace, &Mumps::ordering, &Mumps::low_rank_tolerance, &Mumps::low_rank_from,
                      &Mumps::single_precision);
   EXPECT_EQ(linear_list.get<int>("lag"), 4);   // the documented default of the lag rule
