@@ -39,6 +39,10 @@ iterations' = 0; 'after' is the current defaults):
                           segments (a segment a session killed counts to its last logged step); its row is written
                           once the run has finished, with P_max, Delta u_z and Delta Pi_ext.
 
+  accurate-table6-study   the same study on the medium mesh with the equal-area section (within 1 % of the fine
+                          level), both cores: the study scenes with double-precision factors against the faster path
+                          following of benchmarks/speedup_front.py (AFTER_LIFT on the pull-offs, single-precision
+                          factors on all); about an hour; --level coarse checks the script.
   medium-pull-off-90, newton-per-state   the peel front's cases on the accurate medium mesh, the study scenes'
                           settings against the faster path following: benchmarks/speedup_front.py says what each runs
                           and which rows it writes (medium-pull-off-90 also writes medium-snap and two-ranks-90).
@@ -66,7 +70,7 @@ sys.path.insert(0, os.path.join(ROOT, 'benchmarks'))
 from curves import RECORDED_BENCHMARK_START, pull_off_summary  # noqa: E402
 from scenes import benchmark_scene  # noqa: E402
 import peer_iteration  # noqa: E402
-from speedup_front import FRONT_CASES, FRONT_ROWS, front_case  # noqa: E402
+from speedup_front import AFTER_LIFT, BEFORE, FRONT_CASES, FRONT_ROWS, SINGLE, front_case  # noqa: E402
 
 APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula'))
 SOLID = os.path.join(ROOT, 'build', 'benchmarks', 'solid_benchmark')
@@ -205,29 +209,42 @@ def table6_half(work, label, settings, level):
                                                                          re.M)) for l in logs}
     results = {angle: pull_off_summary(runs, f'pull-off-{angle}', count_from=RECORDED_BENCHMARK_START)
                for angle in TABLE6_ANGLES}
-    print(f"medium-table6-study, {label}: {wall:.0f} s wall, {sum(tangents.values())} tangents, P_max "
+    print(f"table6 study on the {level} mesh, {label}: {wall:.0f} s wall, {sum(tangents.values())} tangents, P_max "
           + ' / '.join(f"{results[a]['P_max_nN']:.3f}" for a in TABLE6_ANGLES) + ' nN', flush=True)
     return dict(wall_s=wall, tangents=sum(tangents.values()), rotation_tangents=tangents['peel-rotation'],
                 results=results)
 
 
-def medium_table6_study(work, level):
-    solvers = {k: v for k, v in OLD_SCENE.items() if k != 'Steps'}   # 'Steps' holds entries of both step lists
-    old_steps = flattened(OLD_SCENE['Steps'])
-    steps = [f'peel-rotation:Loading/Rotation Steps/{entry}' for entry in old_steps]
-    steps += [f'pull-off-{a}:{entry}' for a in TABLE6_ANGLES for entry in
-              OLD_TABLE6_LIFT + [f'Loading/Lift Steps/{e}' for e in old_steps]]
+def medium_table6_study(work, level, accurate=False):
+    """The Table 6 study before and after: the code of 0f7a416 against the study scenes as they are or, `accurate`,
+    on the medium mesh with the equal-area section the study scenes with double-precision factors against the
+    faster path following (speedup_front.AFTER on the pull-offs, single-precision factors on all)."""
+    if accurate:
+        section = ['Mesh/section=equal area']
+        after_settings = section + TABLE6_ROTATION + SINGLE + [f'pull-off-{a}:{e}' for a in TABLE6_ANGLES
+                                                                 for e in AFTER_LIFT]
+        before_settings = section + TABLE6_ROTATION + BEFORE
+        labels = ('accurate-after', 'accurate-before')
+    else:
+        solvers = {k: v for k, v in OLD_SCENE.items() if k != 'Steps'}   # 'Steps' holds entries of both step lists
+        old_steps = flattened(OLD_SCENE['Steps'])
+        steps = [f'peel-rotation:Loading/Rotation Steps/{entry}' for entry in old_steps]
+        steps += [f'pull-off-{a}:{entry}' for a in TABLE6_ANGLES for entry in
+                  OLD_TABLE6_LIFT + [f'Loading/Lift Steps/{e}' for e in old_steps]]
+        after_settings, before_settings = TABLE6_ROTATION, flattened(solvers) + TABLE6_ROTATION + steps
+        labels = ('after', 'before')
     # The after half first: it answers the 600 s target by itself, and the before half (the longer) can be stopped and
     # resumed in a later session.
-    after = table6_half(work, 'after', TABLE6_ROTATION, level)
-    before = table6_half(work, 'before', flattened(solvers) + TABLE6_ROTATION + steps, level)
+    after = table6_half(work, labels[0], after_settings, level)
+    before = table6_half(work, labels[1], before_settings, level)
     change = max(abs(after['results'][a][q] / before['results'][a][q] - 1) * 100
                  for a in TABLE6_ANGLES for q in QUANTITIES)
     def counts(half):
         return (f"wall {half['wall_s']:.0f} s, {half['tangents']} tangents (rotation to 90 deg {half['rotation_tangents']}), "
                 'P_max ' + ' / '.join(f"{half['results'][a]['P_max_nN']:.3f}" for a in TABLE6_ANGLES) +
                 ' nN at ' + '/'.join(str(a) for a in TABLE6_ANGLES) + ' deg')
-    return [dict(case='medium-table6-study' + ('' if level == 'medium' else f'-{level}'),
+    case = 'accurate-table6-study' if accurate else 'medium-table6-study'
+    return [dict(case=case + ('' if level == 'medium' else f'-{level}'),
                  before_s=round(before['wall_s'], 1), after_s=round(after['wall_s'], 1),
                  ratio=round(before['wall_s'] / after['wall_s'], 2), max_result_change_pct=round(change, 4),
                  before_counts=counts(before), after_counts=counts(after))]
@@ -305,13 +322,14 @@ def peer_medium_iteration(work):
 
 
 CASE_ROWS = ['medium-pull-off-45', 'fine-newton-iteration', 'fine-newton-iteration-fresh-factors',
-             'peer-medium-iteration', 'medium-table6-study', 'fine-pull-off-60', *FRONT_ROWS]
+             'peer-medium-iteration', 'medium-table6-study', 'fine-pull-off-60', *FRONT_ROWS, 'accurate-table6-study']
 
 
 def main():
     cases = ['fine-newton-iteration', 'medium-pull-off-45', 'peer-medium-iteration']   # the hour-long default
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument('--cases', nargs='*', default=cases, choices=cases + ['medium-table6-study', 'fine-pull-off-60', *FRONT_CASES])
+    parser.add_argument('--cases', nargs='*', default=cases, choices=cases + ['medium-table6-study', 'fine-pull-off-60', *FRONT_CASES,
+                                                            'accurate-table6-study'])
     parser.add_argument('--work', default='speedup')
     parser.add_argument('--docs', action='store_true')
     parser.add_argument('--level', default='medium', choices=['coarse', 'medium'],
@@ -331,8 +349,8 @@ def main():
             rows += fine_pull_off_60(work)
         elif case in FRONT_CASES:
             rows += front_case(case, work)
-        elif case == 'medium-table6-study':
-            rows += medium_table6_study(work, arguments.level)
+        elif case in ('medium-table6-study', 'accurate-table6-study'):
+            rows += medium_table6_study(work, arguments.level, accurate=case == 'accurate-table6-study')
         else:
             rows += peer_medium_iteration(work)
     print('\n| case | before [s] | after [s] | ratio | largest result change [%] | before | after |')

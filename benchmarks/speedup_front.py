@@ -30,7 +30,8 @@ MESH = ['Mesh/level=medium', 'Mesh/section=equal area', 'Output/field interval=0
 # The faster path following: lift steps up to 40 nm, held to the reaction curve's resolution (docs/performance.md,
 # "Longer lift steps where the path is smooth"), and single-precision factors (docs/solvers.md).
 SINGLE = ['Linear Solver/MUMPS/factor precision=single']
-AFTER = ['Loading/Lift Steps/maximum=40', 'Loading/Lift Steps/curve tolerance=1e-3'] + SINGLE
+AFTER_LIFT = ['Loading/Lift Steps/maximum=40', 'Loading/Lift Steps/curve tolerance=1e-3']
+AFTER = AFTER_LIFT + SINGLE
 # The study scenes' settings before: double-precision factors (the default before single precision was measured).
 BEFORE = ['Linear Solver/MUMPS/factor precision=double']
 QUANTITIES = ('P_max_nN', 'delta_u_z_nm', 'delta_Pi_ext_1e-18J')
