@@ -1,8 +1,9 @@
 #pragma once
 // Linear solvers for the Newton steps, chosen by name in XML and built through Stratimikos:
 //
-//   mumps      MUMPS LDL^T (or LU) direct solve, wrapped as an exact preconditioner of Belos GMRES (which then
-//              converges in one iteration and refines the direct solution); correct on any number of ranks.
+//   mumps      MUMPS LDL^T (or LU) direct solve, wrapped as the preconditioner of Belos GMRES (with fresh
+//              double-precision factors GMRES converges in one iteration and refines the direct solution; with the
+//              default single-precision factors flexible GMRES takes a few); correct on any number of ranks.
 //              With `lag` > 0 a factorization is kept as the preconditioner of the following Newton tangents (GMRES
 //              then needs a few iterations instead of one) until the solves it serves take more than
 //              `lag applications` preconditioner applications, or `lag` tangents have passed: the Newton
