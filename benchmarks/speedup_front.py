@@ -21,7 +21,7 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, 'scripts'))
 from curves import pull_off_summary, read_curve  # noqa: E402
-from study.scenes import apply_overrides  # noqa: E402
+from study.scenes import apply_overrides, parse_override  # noqa: E402
 
 APP = os.environ.get('SPATULA_APP', os.path.join(ROOT, 'build', 'apps', 'spatula', 'spatula'))
 ENVIRONMENT = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
@@ -39,24 +39,15 @@ FRONT_CASES = ('medium-pull-off-90', 'newton-per-state')
 FRONT_ROWS = ('medium-pull-off-90', 'single-precision-90', 'medium-snap', 'two-ranks-90', 'newton-per-state')
 
 
-def overrides(entries):
-    """run-study.py --set entries ('List/Sublist/name=value') as scenes.apply_overrides takes them."""
-    parsed = []
-    for entry in entries:
-        key, value = entry.split('=', 1)
-        *path, name = key.split('/')
-        parsed.append((None, tuple(path), name, value))
-    return parsed
-
-
 def run(work, angle, label, settings, ranks=1):
     """One pull-off from the study rotation's checkpoint: its wall seconds, counts and Table 6 quantities."""
     name = f'front-{angle}-{label}'
     if not os.path.exists(ROTATION):
         sys.exit(f'{ROTATION} is missing: the kept equal-area medium rotation (results/medium-equal-area/README.md)')
     scene = f'pull-off-{angle}'
-    text = apply_overrides(open(os.path.join(ROOT, 'xml', 'studies', scene + '.xml')).read(), None, overrides(
-        MESH + settings + [f'Output/directory={name}', f'Loading/restart file={name}.restart.h5']))
+    entries = MESH + settings + [f'Output/directory={name}', f'Loading/restart file={name}.restart.h5']
+    text = apply_overrides(open(os.path.join(ROOT, 'xml', 'studies', scene + '.xml')).read(), None,
+                           [parse_override(entry) for entry in entries])
     open(os.path.join(work, name + '.xml'), 'w').write(text)
     shutil.copyfile(ROTATION, os.path.join(work, name + '.restart.h5'))
     shutil.rmtree(os.path.join(work, name), ignore_errors=True)
@@ -72,10 +63,11 @@ def run(work, angle, label, settings, ranks=1):
     jumps = [int(n) for n in re.findall(r'^  jumped in (\d+) iterations', text, re.M)]
     jump_seconds = re.search(r'^spatula: jump past instability\s+([0-9.]+)', text, re.M)
     states = sum(1 for row in read_curve(work, name) if row['stage'] == 'lift')
+    summary = pull_off_summary(work, name)
     result = dict(wall_s=wall, tangents=int(re.search(r'^solver: (\d+) tangents', text, re.M).group(1)),
                   states=states, snap_iterations=max(jumps, default=0),
                   snap_s=float(jump_seconds.group(1)) if jump_seconds and ranks == 1 else None,
-                  **{q: pull_off_summary(work, name)[q] for q in QUANTITIES})
+                  **{q: summary[q] for q in QUANTITIES})
     print(f"{name}: {wall:.0f} s, {result['tangents']} tangents, {states} states, snap {result['snap_iterations']} "
           f"iterations, P_max {result['P_max_nN']:.4f} nN", flush=True)
     return result
@@ -91,32 +83,28 @@ def counts(r):
             f"Delta Pi_ext {r['delta_Pi_ext_1e-18J']:.2f} 1e-18 J")
 
 
+def comparison(case, before, after, labels=('', '')):
+    """A row of docs/speedup.csv: the two runs' wall seconds, their ratio, the largest result change and counts."""
+    return dict(case=case, before_s=round(before['wall_s'], 1), after_s=round(after['wall_s'], 1),
+                ratio=round(before['wall_s'] / after['wall_s'], 2), max_result_change_pct=change_pct(before, after),
+                before_counts=labels[0] + counts(before), after_counts=labels[1] + counts(after))
+
+
 def pull_off_90(work):
     before = run(work, 90, 'before', BEFORE)
     single = run(work, 90, 'single-precision', SINGLE)
     after = run(work, 90, 'after', AFTER)
     two = run(work, 90, 'after-2-ranks', AFTER, ranks=2)
-    row, precision = (dict(case=case, before_s=round(before['wall_s'], 1), after_s=round(new['wall_s'], 1),
-                           ratio=round(before['wall_s'] / new['wall_s'], 2),
-                           max_result_change_pct=change_pct(before, new), before_counts=counts(before),
-                           after_counts=counts(new))
-                      for case, new in (('medium-pull-off-90', after), ('single-precision-90', single)))
     snap = dict(case='medium-snap', before_s=round(before['snap_s'], 1), after_s=round(after['snap_s'], 1),
                 ratio=round(before['snap_s'] / after['snap_s'], 2), max_result_change_pct='',
                 before_counts=f"{before['snap_iterations']} iterations",
                 after_counts=f"{after['snap_iterations']} iterations")
-    ranks = dict(case='two-ranks-90', before_s=round(after['wall_s'], 1), after_s=round(two['wall_s'], 1),
-                 ratio=round(after['wall_s'] / two['wall_s'], 2), max_result_change_pct=change_pct(after, two),
-                 before_counts='1 rank: ' + counts(after), after_counts='2 ranks: ' + counts(two))
-    return [row, precision, snap, ranks]
+    return [comparison('medium-pull-off-90', before, after), comparison('single-precision-90', before, single), snap,
+            comparison('two-ranks-90', after, two, ('1 rank: ', '2 ranks: '))]
 
 
 def newton_per_state(work):
-    before = run(work, 60, 'before', BEFORE)
-    after = run(work, 60, 'after', AFTER)
-    return [dict(case='newton-per-state', before_s=round(before['wall_s'], 1), after_s=round(after['wall_s'], 1),
-                 ratio=round(before['wall_s'] / after['wall_s'], 2), max_result_change_pct=change_pct(before, after),
-                 before_counts=counts(before), after_counts=counts(after))]
+    return [comparison('newton-per-state', run(work, 60, 'before', BEFORE), run(work, 60, 'after', AFTER))]
 
 
 def front_case(case, work):

@@ -10,11 +10,8 @@ SpectrumOutput::SpectrumOutput(discretization::DiscreteSystem& system, const sol
                                int iterations, const std::string& file)
     : system_(system), iterations_(iterations), file_(file)
 {
-  auto exact = mumps;   // full-rank LDL^T: the inertia and the smallest eigenvalues need exact factors
-  exact.symmetric = true;
-  exact.low_rank_tolerance = 0.0;
-  exact.single_precision = false;
-  solver_ = std::make_unique<solvers::MumpsSolver>(system.owned_map(), exact);
+  // Exact LDL^T factors: the inertia and the smallest eigenvalues need them.
+  solver_ = std::make_unique<solvers::MumpsSolver>(system.owned_map(), mumps.exact_ldlt());
   if (file_.empty()) return;
   out_.open(file_);
   out_ << "step,stage,load,newton_iterations,nearest_eigenvalue_nN_per_nm,nearest_over_mean_diagonal,"

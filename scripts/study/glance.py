@@ -4,7 +4,7 @@ error bar, with the reason where it is known (scripts/study/glance-reasons.csv).
 import csv
 import os
 
-from convergence import EQUAL_AREA_SIZE, LEVELS, richardson
+from convergence import ELEMENT_SIZE, EQUAL_AREA_SIZE, richardson
 from study.tables import PAPER_TABLE4, PAPER_TABLE5_START, PAPER_TABLE6, rotation_curve, table4
 
 PULL_OFF_ANGLES = (45, 60, 75, 90)
@@ -31,14 +31,15 @@ def reason(table, case, quantity):
     return REASONS.get((table, case, quantity), REASONS.get((table, case, '*'), ''))
 
 
-def best(by_level):
-    """(value, error bar or None, the mesh it came from, whether the estimate is reliable) from {level: value}."""
-    levels = [level for level in LEVELS if level in by_level]
+def best(by_level, element_size=ELEMENT_SIZE):
+    """(value, error bar or None, the mesh it came from, whether the estimate is reliable) from {level: value} over
+    the levels of element_size (the paper's, or the equal-area sequence)."""
+    levels = [level for level in element_size if level in by_level]
     if not levels:
         return None
     if len(levels) == 1:
         return by_level[levels[0]], None, levels[0], False
-    finest, estimate, _, remark = richardson(by_level)
+    finest, estimate, _, remark = richardson(by_level, element_size)
     return finest, estimate, levels[-1], 'not reliable' not in remark and 'asymptotic' not in remark
 
 
@@ -47,10 +48,8 @@ def equal_area(by_level):
     {equal-area level: value}, or None where the medium mesh did not run the scene."""
     if 'medium-equal-area' not in by_level:
         return None
-    if len(by_level) == 1:
-        return by_level['medium-equal-area'], None, False
-    value, estimate, _, remark = richardson(by_level, EQUAL_AREA_SIZE)
-    return value, estimate, 'not reliable' not in remark and 'asymptotic' not in remark
+    value, estimate, _, reliable = best(by_level, EQUAL_AREA_SIZE)
+    return value, estimate, reliable
 
 
 def with_bar(value, estimate, reliable):

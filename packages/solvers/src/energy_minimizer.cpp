@@ -36,13 +36,9 @@ EnergyMinimizer::~EnergyMinimizer() = default;
 
 MumpsSolver& EnergyMinimizer::solver()
 {
-  if (!solver_) {   // the user's MUMPS options, but exact LDL^T factors: the descent needs their inertia
-    auto parameters = confirm_.linear_solver().parameters().mumps;
-    parameters.symmetric = true;
-    parameters.low_rank_tolerance = 0.0;
-    parameters.single_precision = false;
-    solver_ = std::make_unique<MumpsSolver>(model_.system().owned_map(), parameters);
-  }
+  if (!solver_)   // the user's MUMPS options, but exact LDL^T factors: the descent needs their inertia
+    solver_ = std::make_unique<MumpsSolver>(model_.system().owned_map(),
+                                            confirm_.linear_solver().parameters().mumps.exact_ldlt());
   return *solver_;
 }
 

@@ -289,11 +289,7 @@ private:
   {
     const auto& tangent = *model_.system().jacobian();
     const auto map = tangent.getRowMap();
-    if (!soft_solver_) {
-      MumpsParameters exact;
-      exact.low_rank_tolerance = 0.0;
-      soft_solver_ = std::make_unique<MumpsSolver>(map, exact);
-    }
+    if (!soft_solver_) soft_solver_ = std::make_unique<MumpsSolver>(map, MumpsParameters{}.exact_ldlt());
     soft_solver_->factor(tangent);
     soft_ = Teuchos::rcp(new Vector(map));
     Vector z(map), product(map);

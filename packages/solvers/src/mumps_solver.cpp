@@ -79,7 +79,14 @@ void MumpsParameters::declare(Teuchos::ParameterList& list, const MumpsParameter
                              "double-precision factors, whose inertia they need", {"double", "single"});
 }
 
-void MumpsParameters::declare(Teuchos::ParameterList& list) { declare(list, MumpsParameters{}); }
+MumpsParameters MumpsParameters::exact_ldlt() const
+{
+  MumpsParameters exact = *this;
+  exact.symmetric = true;
+  exact.low_rank_tolerance = 0.0;
+  exact.single_precision = false;
+  return exact;
+}
 
 MumpsParameters MumpsParameters::from(const Teuchos::ParameterList& list)
 {

@@ -42,9 +42,10 @@ struct MumpsParameters {
   double low_rank_tolerance = 1e-5;   // block low-rank factorization (ICNTL(35), CNTL(7)); 0: full rank
   int low_rank_from = 100000;          // ... for systems of at least this many unknowns (smaller: full rank)
   bool single_precision = false;       // factors in single precision (SMUMPS): a GMRES preconditioner, not exact
+  // These options with exact factors: LDL^T, full rank, double precision (for users of the factors' inertia).
+  MumpsParameters exact_ldlt() const;
   // The keys with their defaults (`defaults`: those of the solver that declares them, e.g. the Newton tangents').
   static void declare(Teuchos::ParameterList& list, const MumpsParameters& defaults);
-  static void declare(Teuchos::ParameterList& list);   // with MumpsParameters' own defaults
   static MumpsParameters from(const Teuchos::ParameterList& list);
 };
 

@@ -176,6 +176,13 @@ TEST(Mumps, SinglePrecisionFactorsAreAnApproximateInverseWithTheSameInertia)
   shifted.factor(*indefinite);
   EXPECT_EQ(shifted.statistics().negative_pivots, eigenvalues_below(200, 0.5));
   EXPECT_LT(relative_residual(*indefinite, shifted), 1e-4);
+  // Users of the inertia take exact factors of the same options: LDL^T, full rank, double precision.
+  parameters.symmetric = false;
+  parameters.low_rank_tolerance = 1e-3;
+  parameters.ordering = solvers::MumpsOrdering::pord;
+  const auto exact = parameters.exact_ldlt();
+  EXPECT_TRUE(exact.symmetric && !exact.single_precision && exact.low_rank_tolerance == 0.0);
+  EXPECT_EQ(exact.ordering, solvers::MumpsOrdering::pord);
 }
 
 }  // namespace
