@@ -1,4 +1,5 @@
 #include "checkpoint.hpp"
+#include "pull_directions.hpp"
 
 #include "discretization/system_fields.hpp"
 #include "io/checked_write.hpp"
@@ -73,6 +74,22 @@ void set_state(const discretization::DiscreteSystem& system, const std::vector<d
   for (int m = 0; m < discretization::master_count; ++m) system.set_master(x, discretization::Master(m), masters[m]);
 }
 
+// The masters stored in `in`'s checkpoint `group` for this scene: a checkpoint made with another 'Loading/pull angle'
+// (none stored: 90 deg) has its lift and slide turned into this scene's directions (the same face position).
+std::vector<double> scene_masters(io::Hdf5File& in, const std::string& group, const std::string& dataset,
+                                  const Scene& scene)
+{
+  auto masters = in.read_doubles(group + "/" + dataset);
+  const double stored = in.exists(group + "/pull angle") ? in.read_doubles(group + "/pull angle").at(0) : 90.0;
+  if (stored == scene.loading.pull_angle || masters.size() != discretization::master_count) return masters;
+  const auto from = PullDirections::at(stored), to = PullDirections::at(scene.loading.pull_angle);
+  const double lift = masters[1], slide = masters[2];
+  const double x = from.x(lift, slide), z = from.z(lift, slide);
+  masters[1] = to.along_lift(x, z);
+  masters[2] = to.along_slide(x, z);
+  return masters;
+}
+
 std::string restart_key(const Scene& scene)
 {
   return "parameter 'Loading/restart file' = '" + scene.loading.restart_file + "'";
@@ -103,6 +120,7 @@ void write_checkpoint(const std::string& file, const std::string& label, const d
   const auto jump_displacements =
       jump ? discretization::space_displacements(system, *jump->state) : std::vector<double>{};
   const auto masters = masters_of(system, x);
+  const auto contact_history = system.contact_history();   // collective
   const auto jump_masters = jump ? masters_of(system, *jump->state) : std::vector<double>{};
   if (system.owned_map()->getComm()->getRank() != 0) return;
   namespace fs = std::filesystem;
@@ -128,7 +146,9 @@ void write_checkpoint(const std::string& file, const std::string& label, const d
     }
     out.write(group + "/displacements", displacements, 3);
     out.write(group + "/masters", masters);
+    out.write(group + "/pull angle", std::vector<double>{scene.loading.pull_angle});
     if (anchors) out.write(group + "/anchors", anchor_displacements, 3);
+    if (!contact_history.empty()) out.write(group + "/contact history", contact_history);
     if (jump) {
       out.write(group + "/jump displacements", jump_displacements, 3);
       out.write(group + "/jump masters", jump_masters);
@@ -213,7 +233,7 @@ std::optional<analysis::LoadPath::JumpInProgress> read_jump_in_progress(const Sc
   const std::string group = "/checkpoints/" + restart_label(scene.loading);
   if (!in.exists(group + "/jump")) return std::nullopt;
   const auto j = in.read_doubles(group + "/jump");
-  const auto masters = in.read_doubles(group + "/jump masters");
+  const auto masters = scene_masters(in, group, "jump masters", scene);
   if (j.size() != 5 || masters.size() != discretization::master_count)
     throw parameters::InputError(restart_key(scene) + ": the jump stored with checkpoint '" +
                                  restart_label(scene.loading) + "' is incomplete");
@@ -268,6 +288,19 @@ void check_checkpoint(const Scene& scene, const discretization::NodeSpace& nodes
   if (stored_history.size() < 5 || in->read_doubles(group + "/masters").size() != discretization::master_count ||
       in->read_doubles(group + "/displacements").size() != 3 * static_cast<std::size_t>(nodes.node_count()))
     throw parameters::InputError(restart_key(scene) + ": checkpoint '" + label + "' is incomplete");
+  // A contact law with state goes on from the points' histories stored with the state.
+  if (scene.adhesion.enabled) {
+    const auto contact = contact::make_contact_model(scene.adhesion.settings);
+    const std::size_t order = contact->quadrature_order();
+    const std::size_t expected = nodes.faces.size() * order * order * contact->history_size();
+    if (expected > 0 && (!in->exists(group + "/contact history") ||
+                         in->read_doubles(group + "/contact history").size() != expected))
+      throw parameters::InputError(
+          restart_key(scene) + ": checkpoint '" + label + "' holds no contact history for 'Adhesion/law' = '" +
+          scene.adhesion.settings.law + "' with " + std::to_string(order) + " x " + std::to_string(order) +
+          " points per face (it was written with another law or quadrature); a law with state goes on only from its "
+          "own states");
+  }
   // The stage it lies in must be one of this scene's path (a scene without loading follows none).
   if (!scene.loading.stages.empty() && in->exists(group + "/stage")) {
     const auto stage = static_cast<int>(in->read_doubles(group + "/stage").at(0));
@@ -279,12 +312,13 @@ void check_checkpoint(const Scene& scene, const discretization::NodeSpace& nodes
   }
 }
 
-analysis::LoadPoint read_checkpoint(const Scene& scene, const discretization::DiscreteSystem& system,
+analysis::LoadPoint read_checkpoint(const Scene& scene, discretization::DiscreteSystem& system,
                                     discretization::Vector& x, PathStage& stage)
 {
   io::Hdf5File in(scene.loading.restart_file, io::Hdf5File::Mode::read);
   const std::string group = "/checkpoints/" + restart_label(scene.loading);
-  set_state(system, in.read_doubles(group + "/displacements"), in.read_doubles(group + "/masters"), x);
+  set_state(system, in.read_doubles(group + "/displacements"), scene_masters(in, group, "masters", scene), x);
+  if (in.exists(group + "/contact history")) system.set_contact_history(in.read_doubles(group + "/contact history"));
   const auto h = in.read_doubles(group + "/history");
   analysis::LoadPoint point;
   point.step = static_cast<int>(h[0]);

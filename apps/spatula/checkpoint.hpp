@@ -4,11 +4,13 @@
 // a run that is interrupted or fails leaves its last converged state, to go on from.
 //
 // A checkpoint stores the displacements of every node of the node space (mesh and enrichment nodes), the three
-// end-face masters, the path history (step, external work) and the stage (rotation or lift, and where the lift
-// began), under /checkpoints/<label>, with a signature (node and element counts, enrichment, geometry, material)
+// end-face masters (with the 'Loading/pull angle' whose directions they move along: a restart with another angle
+// turns them into its own), the path history (step, external work) and the stage (rotation or lift, and where the
+// lift began), under /checkpoints/<label>, with a signature (node and element counts, enrichment, geometry, material)
 // checked on restart. A run whose stiction anchors were set at its restart state ('Adhesion/stiction anchors' =
 // 'restart state') also stores that state's displacements (/anchors), so that a resumed run measures the travel
-// from the same anchors. A last state taken inside a jump past an instability (a periodic checkpoint during its
+// from the same anchors. A contact law with state (adhesive friction) stores its points' committed histories
+// (/contact history, face after face in the node space's order), which a restart requires. A last state taken inside a jump past an instability (a periodic checkpoint during its
 // energy descent, a signal, or the descent's iteration limit) also stores the descent's state (/jump displacements,
 // /jump masters) and where it stands (/jump: master, value, shift, scale, iterations): a run resumed from it goes on
 // with the descent instead of starting the jump again.
@@ -71,8 +73,9 @@ RunRecord read_run_record(const Scene& scene);
 // space.
 void check_checkpoint(const Scene& scene, const discretization::NodeSpace& nodes);
 
-// Reads the scene's checkpoint into x and returns the path history (checked by check_checkpoint before).
-analysis::LoadPoint read_checkpoint(const Scene& scene, const discretization::DiscreteSystem& system,
+// Reads the scene's checkpoint into x (and a contact law's histories into the system) and returns the path history
+// (checked by check_checkpoint before).
+analysis::LoadPoint read_checkpoint(const Scene& scene, discretization::DiscreteSystem& system,
                                     discretization::Vector& x, PathStage& stage);
 
 }  // namespace spatula::app

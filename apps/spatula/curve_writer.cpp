@@ -16,9 +16,10 @@ constexpr double degree = 3.14159265358979323846 / 180.0;
 }  // namespace
 
 CurveWriter::CurveWriter(const std::string& file, double young, double reference_energy,
-                         double initial_internal_energy, double initial_contact_energy, int resume_after)
+                         double initial_internal_energy, double initial_contact_energy, int resume_after,
+                         PullDirections directions)
     : file_(file), young_(young), reference_(reference_energy), initial_internal_(initial_internal_energy),
-      initial_contact_(initial_contact_energy)
+      initial_contact_(initial_contact_energy), directions_(directions)
 {
   if (resume_after >= 0) {
     keep_rows_up_to(file, resume_after);
@@ -47,13 +48,13 @@ void CurveWriter::write(const analysis::LoadPoint& p, const std::string& stage, 
 {
   const double sa = stored_adhesion(p);
   const auto full = full_spatula(p);
-  out_ << p.step << "," << stage << "," << (theta_s + p.rotation) / degree << "," << p.lift << ","
-       << full.moment << "," << full.moment / young_ << "," << full.force << "," << full.force / young_ << ","
+  out_ << p.step << "," << stage << "," << (theta_s + p.rotation) / degree << "," << u_z(p) << ","
+       << full.moment << "," << full.moment / young_ << "," << P_z(p) << "," << P_z(p) / young_ << ","
        << internal(p) << "," << full.external_work << "," << full.contact_energy << "," << sa << ","
        << full.external_work / reference_ << "," << internal(p) / reference_ << "," << sa / reference_
        << "," << full.dissipated / reference_ << "," << balance_error(p) << "," << (p.after_jump ? 1 : 0) << ","
        << p.active_faces << "," << p.skipped_faces << ","
-       << p.newton_iterations << "," << p.negative_pivots << "," << p.seconds << "," << p.slide << "," << full.slide_force << "\n";
+       << p.newton_iterations << "," << p.negative_pivots << "," << p.seconds << "," << u_x(p) << "," << P_x(p) << "\n";
   commit_row();
 }
 

@@ -14,13 +14,14 @@ inline double full_spatula(double half_model_value) { return halves * half_model
 struct FullSpatula {
   double moment, force, slide_force;            // M_y [nN nm], P_z, P_x [nN]
   double internal_energy, contact_energy;       // Pi_int, Pi_c [nN nm]
-  double external_work, dissipated;             // Pi_ext, the energy the jumps released [nN nm]
+  // Pi_ext, and the energy dissipated: released by the jumps and (a friction law) by sliding [nN nm]
+  double external_work, dissipated;
 };
 
 inline FullSpatula full_spatula(const analysis::LoadPoint& p)
 {
   return {halves * p.moment,          halves * p.force,          halves * p.slide_force, halves * p.internal_energy,
-          halves * p.contact_energy,  halves * p.external_work,  halves * p.dissipated};
+          halves * p.contact_energy,  halves * p.external_work,  halves * (p.dissipated + p.sliding)};
 }
 
 }  // namespace spatula::app

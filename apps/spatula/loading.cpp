@@ -59,7 +59,8 @@ void LoadingParameters::declare(Teuchos::ParameterList& loading)
                              "shaft inclination to reach (rotation) or hold (lift) [deg]",
                              Range::closed(-180.0, 180.0));
   parameters::declare_double(loading, "final lift", d.final_lift,
-                             "u_z of the end face centre at the end of a lift [nm]",
+                             "the end face centre's lift at the end of a lift, along the lift direction (u_z at the "
+                             "default 'pull angle') [nm]",
                              Range::closed(-1e4, 1e4));
   parameters::declare_bool(loading, "final lift relative", d.lift_relative,
                            "count 'final lift' from the u_z where the lift starts, not from the undeformed state");
@@ -68,6 +69,11 @@ void LoadingParameters::declare(Teuchos::ParameterList& loading)
   parameters::declare_bool(loading, "free slide during lift", d.free_slide,
                            "zero net X force on the end face while lifting (false: u_x held); needs a law that holds "
                            "the pad tangentially (stiction): on a frictionless substrate the spatula could slide freely");
+  parameters::declare_double(loading, "pull angle", d.pull_angle,
+                             "beta, the angle of the lift direction to the substrate in the X-Z plane [deg]: the end "
+                             "face is lifted along (cos beta, 0, sin beta) and slid along (sin beta, 0, -cos beta); "
+                             "90: along Z and X. The curve reports Z and X components whatever beta",
+                             Range::closed(0.0, 180.0));
   parameters::declare_bool(loading, "hold contact surface", d.hold_contact_surface,
                            "hold the pad's contact surface at Z = 0 (a structural check without adhesion)");
   analysis::StepParameters::declare(
@@ -143,6 +149,7 @@ LoadingParameters LoadingParameters::from(const Teuchos::ParameterList& loading)
   p.free_slide = loading.get<bool>("free slide during lift");
   p.lift_relative = loading.get<bool>("final lift relative");
   p.hold_contact_surface = loading.get<bool>("hold contact surface");
+  p.pull_angle = loading.get<double>("pull angle");
   p.rotation_steps = analysis::StepParameters::from(loading.sublist("Rotation Steps"), "Loading/Rotation Steps");
   p.lift_steps = analysis::StepParameters::from(loading.sublist("Lift Steps"), "Loading/Lift Steps");
   p.past_instabilities = loading.get<std::string>("past instabilities");

@@ -25,6 +25,7 @@ struct LoadingParameters {
   bool free_lift = true;          // while rotating: zero net Z force on the face (else u_z held at 0)
   bool free_slide = false;        // while lifting: zero net X force on the face (else u_x held)
   bool hold_contact_surface = false;   // the pad's bottom held at Z = 0 (a check without adhesion)
+  double pull_angle = 90.0;       // beta: the lift direction's angle to the substrate [deg] (pull_directions.hpp)
   // Smallest and largest increments: those of every validated run; in the error benchmark's step set (coarse
   // pull-off at 60 deg) 2 deg / 5 nm took less CPU than half or twice that, with the same P_max to 3e-5.
   analysis::StepParameters rotation_steps{1.0, 0.01, 2.0};   // [deg]

@@ -97,9 +97,16 @@ OutputEstimate estimate_output(const Scene& scene, const mesh::HexMesh& mesh)
   const double field_states =
       scene.output.field_interval > 0 ? 2.0 + states / scene.output.field_interval : 2.0;
   const bool fields = scene.output.write_mesh || loading.type != LoadingType::none;
-  // A checkpoint: the state with its enrichment and the stiction anchors (within 2 x 3 values per node), and the
-  // file twice while it is replaced.
-  const double checkpoint_bytes = nodes * 6 * 8 + 8 * per_dataset;
+  // A checkpoint: the state with its enrichment and the stiction anchors (within 2 x 3 values per node), a contact
+  // law's histories (per contact face and quadrature point; a quadrilateral surface has fewer faces than nodes), and
+  // the file twice while it is replaced.
+  double history_bytes = 0.0;
+  if (scene.adhesion.enabled) {
+    const auto contact = contact::make_contact_model(scene.adhesion.settings);
+    const double order = contact->quadrature_order(), surface_nodes = mesh.nodes(mesh::Boundary::contact).size();
+    history_bytes = surface_nodes * order * order * contact->history_size() * 8;
+  }
+  const double checkpoint_bytes = nodes * 6 * 8 + history_bytes + 10 * per_dataset;
   const double checkpoints = loading.type == LoadingType::none ? 0.0 : 2.0 * (double(loading.checkpoints.size()) + 1.0);
   constexpr double curve_row = 400.0, small_files = 64.0 * 1024.0;   // scene, summaries, FAILURE.txt, marker
   OutputEstimate estimate;

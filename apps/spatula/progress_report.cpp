@@ -17,8 +17,8 @@ void print_state_line(std::ostream& out, const analysis::LoadPoint& p, const std
   const std::streamsize precision = out.precision();
   out << "step " << std::setw(4) << p.step << "  " << stage << "  theta_y " << std::fixed
       << std::setprecision(3) << std::setw(8) << (theta_s + p.rotation) / degree << " deg  u_z " << std::setw(9)
-      << p.lift << " nm  M_y " << std::setprecision(4) << std::setw(10) << full_spatula(p.moment) << " nN nm  P_z "
-      << std::setw(9) << full_spatula(p.force) << " nN  Pi_int " << std::setw(9) << curve.internal(p);
+      << curve.u_z(p) << " nm  M_y " << std::setprecision(4) << std::setw(10) << full_spatula(p.moment)
+      << " nN nm  P_z " << std::setw(9) << curve.P_z(p) << " nN  Pi_int " << std::setw(9) << curve.internal(p);
   if (reference_energy > 0.0)
     out << "  Pi_sa/Pi_c0 " << std::setprecision(4) << curve.stored_adhesion(p) / reference_energy
         << "  balance " << std::scientific << std::setprecision(1) << curve.balance_error(p) << std::fixed

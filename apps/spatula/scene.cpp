@@ -83,18 +83,24 @@ Scene read_scene(Teuchos::ParameterList user)
   scene.newton = solvers::NewtonParameters::from(user.sublist("Nonlinear Solver"));
   scene.job = JobParameters::from(user.sublist("Job"));
   scene.adhesion = contact::AdhesionParameters::from(user.sublist("Adhesion"), scene.material.young);
-  if (scene.loading.free_slide && scene.adhesion.settings.law != "stiction")
+  // Laws that hold the pad along the substrate (the others leave a free X motion singular).
+  const auto& law = scene.adhesion.settings.law;
+  const bool tangential = law == "stiction" || law == "adhesive friction";
+  if (scene.loading.free_slide && !tangential)
     throw parameters::InputError("parameter 'Loading/free slide during lift' = true needs 'Adhesion/law' = 'stiction' "
-                                 "(got '" + scene.adhesion.settings.law + "'): without tangential adhesion nothing "
+                                 "or 'adhesive friction' (got '" + law + "'): without tangential adhesion nothing "
                                  "holds the spatula in X and the system is singular");
   for (const auto& stage : scene.loading.stages) {
     const bool free_in_x = stage.free_slide || stage.kind == StageKind::slide_force;
-    if (scene.loading.type == LoadingType::stages && free_in_x && scene.adhesion.settings.law != "stiction")
+    if (scene.loading.type == LoadingType::stages && free_in_x && !tangential)
       throw parameters::InputError("stage '" + stage.name + "' of 'Loading/Stages': " +
                                    (stage.free_slide ? "'free slide' = true" : "kind 'slide x force'") + " needs "
-                                   "'Adhesion/law' = 'stiction' (got '" + scene.adhesion.settings.law + "'): without "
+                                   "'Adhesion/law' = 'stiction' or 'adhesive friction' (got '" + law + "'): without "
                                    "tangential adhesion nothing holds the spatula in X and the system is singular");
   }
+  // A law whose tangent is not symmetric (adhesive friction) has its Newton tangents factored LU.
+  if (scene.adhesion.enabled && !contact::make_contact_model(scene.adhesion.settings)->symmetric())
+    scene.linear_solver.mumps.symmetric = false;
   if (scene.adhesion.settings.anchor_at_restart) {
     if (scene.loading.restart_file.empty())
       throw parameters::InputError("parameter 'Adhesion/stiction anchors' = 'restart state' needs a state to restart "

@@ -3,6 +3,7 @@
 
 #include "interruption.hpp"
 #include "progress_report.hpp"
+#include "pull_directions.hpp"
 
 #include "discretization/system_fields.hpp"
 #include "io/checked_write.hpp"
@@ -37,8 +38,11 @@ Teuchos::RCP<discretization::DiscreteSystem> make_system(const Scene& scene, con
                                                          const discretization::SystemOptions& options)
 {
   const auto p1 = shape.point(1);
-  const auto constraints =
+  auto constraints =
       discretization::spatula_constraints(mesh, {p1.x, p1.y, p1.z}, scene.loading.hold_contact_surface);
+  const auto directions = PullDirections::at(scene.loading.pull_angle);
+  constraints.lift_direction = directions.lift;
+  constraints.slide_direction = directions.slide;
   return Teuchos::rcp(new discretization::DiscreteSystem(mesh, partition, constraints, scene.material, comm, options));
 }
 
@@ -250,7 +254,8 @@ void Run::start()
   }
   if (root_)
     curve_ = std::make_unique<CurveWriter>(directory_->file("curve.csv"), young_, reference_energy_,
-                                           initial_internal_, initial_contact_, scene_.resume ? path_.last().step : -1);
+                                           initial_internal_, initial_contact_, scene_.resume ? path_.last().step : -1,
+                                           PullDirections::at(scene_.loading.pull_angle));
   if (!scene_.resume) {   // a resumed run has its starting state in its curve and fields already
     if (root_) curve_->write(path_.last(), stage().name, theta_s_);
     write_fields(path_.state(), (theta_s_ + path_.last().rotation) / degree);

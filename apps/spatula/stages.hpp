@@ -21,8 +21,9 @@ const std::vector<std::string>& stage_kinds();
 struct Stage {
   std::string name;            // curve.csv's stage column, messages: the stage's sublist name
   StageKind kind = StageKind::rotate;
-  // rotate: theta_y [deg]; lift, slide: u_z, u_x [nm] of the face centre; lift force, slide force: the net P_z, P_x
-  // on the end face [nN, full spatula]
+  // rotate: theta_y [deg]; lift, slide: the face centre's motion along the lift and slide directions [nm]; lift
+  // force, slide force: the net force on the end face along them [nN, full spatula] (u_z, u_x, P_z, P_x at the
+  // default 'Loading/pull angle' of 90 deg)
   double target = 0.0;
   bool relative = false;       // the target counted from where the stage starts
   analysis::StepParameters steps;

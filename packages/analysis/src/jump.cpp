@@ -117,8 +117,10 @@ std::optional<Failure> LoadPath::jump(Master controlled, double value, const Cal
   const int iterations = outcome.iterations;
   accept(*x, iterations, -1, {});
   const auto& after = last();
+  // (What sliding friction dissipated on the way is counted by LoadPoint::sliding, not again here.)
   const double released = (before.internal_energy + before.contact_energy) -
-                          (after.internal_energy + after.contact_energy) + (after.external_work - before.external_work);
+                          (after.internal_energy + after.contact_energy) + (after.external_work - before.external_work) -
+                          (after.sliding - before.sliding);
   if (jump_.step_balance_tolerance > 0.0 && std::abs(released) <= jump_.step_balance_tolerance) {
     // Newton had stalled, but the descent stayed on the branch: by the measure of the step balance check, an
     // ordinary step, not a snap.

@@ -28,6 +28,7 @@ LoadPoint LoadHistory::measure(discretization::DiscreteSystem& system, const dis
   point.slide_force = evaluation.master_residual[2];
   point.internal_energy = evaluation.internal_energy;
   point.contact_energy = evaluation.contact_energy;
+  point.sliding = evaluation.contact_dissipated;
   point.active_faces = evaluation.active_contact_faces;
   point.skipped_faces = evaluation.skipped_contact_faces;
   point.newton_iterations = iterations;

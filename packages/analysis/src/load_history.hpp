@@ -28,6 +28,7 @@ struct LoadPoint {
   bool after_jump = false;   // the first state on the far side of an instability
   double released = 0.0;     // energy released in that jump (Pi_int + Pi_c before minus after, at fixed load) [nN nm]
   double dissipated = 0.0;   // energy released in all jumps so far [nN nm]
+  double sliding = 0.0;      // energy dissipated by contact friction up to this state [nN nm] (a law with state)
   StepControllerState step_control;   // the controller's state after this point (a resumed run's start)
 
   // The reaction conjugate to a master: the moment, the force along the lift or along the slide.

@@ -315,10 +315,21 @@ void LoadPath::take_step(const Vector& state, const LoadPoint& point, double inc
   previous_->assign(*x_);
   x_->assign(state);
   previous_increment_ = increment;
-  history_.append(point);
+  history_.append(committed(point));
   if (log_ && tables_) *log_ << table;
   check_end(last());
   if (on_point) on_point(last(), *x_);
+}
+
+LoadPoint LoadPath::committed(const LoadPoint& point)
+{
+  if (!model_.system().commit_contact_history(*x_)) return point;
+  const auto after = measure(*x_, point.newton_iterations, point.negative_pivots);
+  LoadPoint result = point;
+  result.internal_energy = after.internal_energy;
+  result.contact_energy = after.contact_energy;
+  result.sliding = after.sliding;
+  return result;
 }
 
 void LoadPath::accept(const Vector& x, int iterations, int negative_pivots, const Callback& on_point)
@@ -326,7 +337,7 @@ void LoadPath::accept(const Vector& x, int iterations, int negative_pivots, cons
   previous_->assign(*x_);
   x_->assign(x);
   previous_increment_ = older_increment_ = 0.0;
-  history_.append(measure(*x_, iterations, negative_pivots));
+  history_.append(committed(measure(*x_, iterations, negative_pivots)));
   if (on_point) on_point(last(), *x_);
 }
 

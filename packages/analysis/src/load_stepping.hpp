@@ -190,6 +190,10 @@ private:
                                           const Callback& on_point);
   void take_step(const Vector& state, const LoadPoint& point, double increment, const std::string& table,
                  const Callback& on_point);
+  // The point of the converged state x_ once a contact law with state has committed its history there (nothing to
+  // do without one): Pi_c measured again from the committed history is the stored energy (the trial's held the
+  // step's sliding too, which then counts in LoadPoint::sliding).
+  LoadPoint committed(const LoadPoint& point);
   // One advance's state (load reached, next increment, failed loads), and its three outcomes of an attempt: a failed
   // one (an early descent, a cut increment, or below the smallest the way past the fold; a failure ends the path), a
   // converged one that crossed a snap (true: cut back and try again; at the smallest increment it is the jump), and a

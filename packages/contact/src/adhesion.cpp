@@ -1,6 +1,7 @@
 #include "contact/adhesion.hpp"
 
 #include "contact/contact_registry.hpp"
+#include "contact/friction_parameters.hpp"
 #include "discretization/discrete_system.hpp"
 #include "parameters/parameter_validation.hpp"
 
@@ -11,7 +12,6 @@ namespace spatula::contact {
 namespace {
 
 constexpr double pi = 3.14159265358979323846;
-
 
 }  // namespace
 
@@ -61,6 +61,7 @@ void AdhesionParameters::declare(Teuchos::ParameterList& adhesion)
                              "undeformed spatula, or in the state the run restarts from ('Loading/restart file'; the "
                              "paper's Fig. 9 switches stiction on for the pull-off from the pre-rotated state)",
                              {"undeformed", "restart state"});
+  declare_friction(adhesion);
   auto& rough = parameters::declare_sublist(adhesion, "Rough Substrate", "Gaussian asperities on a triangular grid");
   parameters::declare_double(rough, "z0", s.rough.z0, "asperity height [nm]", Range::non_negative());
   parameters::declare_double(rough, "h", s.rough.width, "asperity width [nm]", Range::positive());
@@ -98,6 +99,7 @@ AdhesionParameters AdhesionParameters::from(const Teuchos::ParameterList& adhesi
     parameters::fail("Adhesion/cut-off", lj.r_cut, "must exceed 2 r0 = " + std::to_string(2.0 * lj.r0) +
                                                         " nm (the attraction reaches further)");
   s.substrate_height = -r_eq;
+  s.friction = read_friction(adhesion, lj);
   const auto& rough = adhesion.sublist("Rough Substrate");
   s.rough.z0 = rough.get<double>("z0");
   s.rough.width = rough.get<double>("h");

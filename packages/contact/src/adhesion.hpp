@@ -6,6 +6,7 @@
 //   gamma_L = R0 / r0,  gamma_W = E / w0,  w0 = A_H / (2 pi^2 r0^3)   =>  r0 = R0 / gamma_L, A_H = 2 pi^2 r0^3 E / gamma_W.
 //
 // New laws are added by registering them (contact_registry.hpp); the solver and the assembly never change.
+#include "contact/adhesive_friction.hpp"
 #include "discretization/contact_model.hpp"
 #include "discretization/node_space.hpp"
 
@@ -25,6 +26,7 @@ struct AdhesionSettings {
   int quadrature = 6;                  // Gauss points per direction on each contact face
   contact::LennardJones lennard_jones;    // A_H [nN nm], r0, r_reg, r_cut [nm]
   contact::RoughSubstrate rough;          // z0, h, lambda (base set from r_eq: asperity tops at -r_eq)
+  contact::AdhesiveFriction friction;     // 'law' = adhesive friction: its sliding limit and stick
   double substrate_height = 0.0;       // flat: the plane z = -r_eq, so the undeformed pad is traction-free
   bool conform = true;                 // rough: start from the pad pressed onto the asperities
   bool skip_distant_faces = true;      // integrate only faces with a point within the cut-off

@@ -9,6 +9,10 @@
 // template parameter: evaluate(A, x, phi, dphi/dx, d2phi/dx2 or nullptr) -> within the cut-off?, with A = sum_k N_k A_k
 // the point's anchor: where the stiction law measures tangential travel from (the frictionless law ignores it). The
 // anchors A_k are the reference positions X_k unless a run re-anchors them at a deformed state.
+// A law with state (friction_integrand.hpp) declares `history_size` values per quadrature point and evaluates with
+// evaluate(A, x, history in, trial history out, phi, dphi/dx, d2phi/dx2 or nullptr); the face then takes the points'
+// histories in (order x order x history_size values, point (a, b) at (a order + b) history_size) and writes their
+// trial histories, which the caller commits only at a converged state.
 #include "contact/lennard_jones.hpp"
 #include "contact/stiction.hpp"
 #include "contact/substrate.hpp"
@@ -16,6 +20,7 @@
 #include "elements/quadrilateral_shape.hpp"
 
 #include <type_traits>
+#include <utility>
 
 namespace spatula::contact {
 
@@ -83,8 +88,28 @@ struct StictionIntegrand {
 
 struct ContactFaceResult {
   double energy = 0.0;
-  double area = 0.0;       // undeformed area of the face
-  int active_points = 0;   // quadrature points within the cut-off
+  double area = 0.0;        // undeformed area of the face
+  int active_points = 0;    // quadrature points within the cut-off
+  double dissipated = 0.0;  // a law with state: the energy dissipated on the face up to the trial state [nN nm]
+};
+
+// The history values an integrand keeps per quadrature point: its `history_size`, 0 where it declares none.
+template <class Integrand, class = void>
+struct HistorySize {
+  static constexpr int value = 0;
+};
+template <class Integrand>
+struct HistorySize<Integrand, std::void_t<decltype(Integrand::history_size)>> {
+  static constexpr int value = Integrand::history_size;
+};
+// Whether an integrand's Hessian is symmetric: its `symmetric`, true where it declares none.
+template <class Integrand, class = void>
+struct Symmetric {
+  static constexpr bool value = true;
+};
+template <class Integrand>
+struct Symmetric<Integrand, std::void_t<decltype(Integrand::symmetric)>> {
+  static constexpr bool value = Integrand::symmetric;
 };
 
 // Quadrature point (a, b) of a face's order x order Gauss rule: its shape functions, reference position X, anchor A
@@ -124,15 +149,18 @@ struct FacePoint {
   }
 };
 
-// One contact face with nodal anchors A: energy, residual r[3N] and (if K) tangent K[3N][3N].
+// One contact face with nodal anchors A: energy, residual r[3N] and (if K) tangent K[3N][3N]; for a law with state,
+// the points' histories in (nullptr: all zero, the undeformed start) and their trial histories out (nullptr: not kept).
 template <class Surface, class Integrand>
 KOKKOS_INLINE_FUNCTION ContactFaceResult contact_face(const Integrand& integrand, const double X[Surface::nodes][3],
                                                       const double A[Surface::nodes][3],
                                                       const double u[Surface::nodes][3], int order,
                                                       double r[3 * Surface::nodes],
-                                                      double (*K)[3 * Surface::nodes] = nullptr)
+                                                      double (*K)[3 * Surface::nodes] = nullptr,
+                                                      const double* history = nullptr, double* trial = nullptr)
 {
   constexpr int N = Surface::nodes;
+  constexpr int kept = HistorySize<Integrand>::value;
   ContactFaceResult result;
   for (int p = 0; p < 3 * N; ++p) {
     r[p] = 0.0;
@@ -147,7 +175,19 @@ KOKKOS_INLINE_FUNCTION ContactFaceResult contact_face(const Integrand& integrand
       double xq[3];
       point.position(X, u, xq);
       double phi, gradient[3], H[3][3];
-      const bool active = integrand.evaluate(point.A, xq, phi, gradient, K ? H : nullptr);
+      bool active;
+      if constexpr (kept > 0) {
+        const double start[kept] = {};
+        double out[kept];
+        const int index = (a * order + b) * kept;
+        active = integrand.evaluate(point.A, xq, history ? history + index : start, out, phi, gradient,
+                                    K ? H : nullptr);
+        result.dissipated += Integrand::dissipated(out) * dA;
+        if (trial)
+          for (int k = 0; k < kept; ++k) trial[index + k] = out[k];
+      } else {
+        active = integrand.evaluate(point.A, xq, phi, gradient, K ? H : nullptr);
+      }
       result.energy += phi * dA;
       result.area += dA;
       if (!active) continue;

@@ -17,13 +17,14 @@ using discretization::execution_space;
 
 namespace detail {
 
-// One face per work item; sums[0] energy, sums[1] integrated faces, sums[2] active points. An array sum: Kokkos'
+// One face per work item; sums[0] energy, sums[1] integrated faces, sums[2] active points, sums[3] dissipated
+// energy (a law with state). An array sum: Kokkos'
 // own init (zeros) and join (+=) serve, so the kernel declares neither (Kokkos 4 rejects the volatile join that
 // Kokkos 3 asked for).
 template <class Surface, class Integrand>
 struct ContactKernel {
   using value_type = double[];
-  unsigned value_count = 3;
+  unsigned value_count = 4;
   ElementScatter scatter;
   ContactFaceViews faces;
   Integrand integrand;
@@ -49,20 +50,33 @@ struct ContactKernel {
       nearest = bound < nearest ? bound : nearest;
       farthest = bound > farthest ? bound : farthest;
     }
-    // Skip a face whose every point is beyond the cut-off (with a margin for the quadratic interpolation).
+    constexpr int kept = HistorySize<Integrand>::value;
+    const int stride = order * order * kept;
+    const double* history = kept > 0 ? faces.history.data() + face * stride : nullptr;
+    double* trial = kept > 0 ? faces.trial_history.data() + face * stride : nullptr;
+    // Skip a face whose every point is beyond the cut-off (with a margin for the quadratic interpolation); a law
+    // with state keeps the face's history there.
     if (skip_distant && nearest - 0.5 * (farthest - nearest) > integrand.cut_off()) {
       double phi, gradient[3];
       double x_far[3] = {0.0, 0.0, 1e300};
       integrand.evaluate(A[0], x_far, phi, gradient, nullptr);
       sums[0] += phi * faces.areas(face);
+      if constexpr (kept > 0) {
+        for (int k = 0; k < stride; ++k) trial[k] = history[k];
+        for (int a = 0; a < order; ++a)
+          for (int b = 0; b < order; ++b)
+            sums[3] += Integrand::dissipated(history + (a * order + b) * kept) *
+                       FacePoint<Surface>(order, a, b, X, A).dA;
+      }
       return;
     }
     double r[3 * n], K[3 * n][3 * n];
-    const auto result = contact_face<Surface>(integrand, X, A, u, order, r,
-                                                               scatter.with_matrix ? K : nullptr);
+    const auto result = contact_face<Surface>(integrand, X, A, u, order, r, scatter.with_matrix ? K : nullptr,
+                                              history, trial);
     sums[0] += result.energy;
     sums[1] += 1.0;
     sums[2] += result.active_points;
+    sums[3] += result.dissipated;
     if (result.active_points > 0) scatter.add<n>(nodes, r, K);
   }
 };
@@ -144,16 +158,18 @@ public:
   std::string description() const override { return description_; }
   double work_of_adhesion() const override { return work_; }
   int quadrature_order() const override { return order_; }
+  int history_size() const override { return HistorySize<Integrand>::value; }
+  bool symmetric() const override { return Symmetric<Integrand>::value; }
 
   ContactTotals assemble(const ContactFaceViews& faces, const ElementScatter& scatter) const override
   {
-    double sums[3] = {0.0, 0.0, 0.0};
+    double sums[4] = {0.0, 0.0, 0.0, 0.0};
     const auto policy = Kokkos::RangePolicy<execution_space>(0, faces.count);
     if (faces.face_nodes == 9) {
-      detail::ContactKernel<elements::Quad9Surface, Integrand> kernel{3, scatter, faces, integrand_, order_, skip_distant_};
+      detail::ContactKernel<elements::Quad9Surface, Integrand> kernel{4, scatter, faces, integrand_, order_, skip_distant_};
       Kokkos::parallel_reduce("spatula: contact Q1C2 faces", policy, kernel, sums);
     } else {
-      detail::ContactKernel<elements::Quad4Surface, Integrand> kernel{3, scatter, faces, integrand_, order_, skip_distant_};
+      detail::ContactKernel<elements::Quad4Surface, Integrand> kernel{4, scatter, faces, integrand_, order_, skip_distant_};
       Kokkos::parallel_reduce("spatula: contact Q1C1 faces", policy, kernel, sums);
     }
     ContactTotals totals;
@@ -161,6 +177,7 @@ public:
     totals.active_faces = static_cast<int>(sums[1]);
     totals.skipped_faces = faces.count - totals.active_faces;
     totals.active_points = static_cast<int>(sums[2]);
+    totals.dissipated = sums[3];
     return totals;
   }
 

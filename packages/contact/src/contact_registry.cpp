@@ -1,6 +1,8 @@
 #include "contact/contact_registry.hpp"
 
 #include "contact/contact_kernel.hpp"
+#include "contact/friction_integrand.hpp"
+#include "contact/friction_parameters.hpp"
 #include "parameters/parameter_validation.hpp"
 
 namespace spatula::contact {
@@ -52,12 +54,35 @@ std::shared_ptr<const discretization::ContactModel> stiction(const AdhesionSetti
                                                                       s.skip_distant_faces);
 }
 
+std::shared_ptr<const discretization::ContactModel> adhesive_friction(const AdhesionSettings& s)
+{
+  if (s.substrate != SubstrateKind::flat)
+    throw parameters::InputError("parameter 'Adhesion/law' = 'adhesive friction' needs 'Adhesion/substrate' = 'flat' "
+                                 "(got '" + parameters::name_of(s.substrate, substrate_names()) +
+                                 "'): sliding along a curved substrate is not defined");
+  const auto& f = s.friction;
+  if (f.limit == AdhesiveFriction::Limit::constant_strength && f.strength <= 0.0)
+    parameters::fail("Adhesion/Friction/strength", f.strength,
+                     "must be positive with 'sliding limit' = 'constant strength' (else the law is frictionless)");
+  contact::AdhesiveFrictionIntegrand integrand{{s.lennard_jones, {s.substrate_height}}, f};
+  const std::string limit =
+      f.limit == AdhesiveFriction::Limit::extended_amontons
+          ? "extended Amontons limit mu (T_n + t_max), mu = " + std::to_string(f.coefficient)
+          : "constant strength tau_0 = " + std::to_string(f.strength) + " nN/nm^2";
+  return std::make_shared<IntegrandContactModel<decltype(integrand)>>(
+      integrand, s.quadrature,
+      describe(s, ", sliding on the " + limit + " within g_c = " + std::to_string(f.cutoff) + " nm, stick stiffness " +
+                      std::to_string(f.stiffness) + " nN/nm^3"),
+      s.lennard_jones.work_of_adhesion(), s.skip_distant_faces);
+}
+
 }  // namespace
 
 ContactLawRegistry::ContactLawRegistry()
 {
   factories_["frictionless"] = frictionless;
   factories_["stiction"] = stiction;
+  factories_["adhesive friction"] = adhesive_friction;
 }
 
 ContactLawRegistry& ContactLawRegistry::instance()

@@ -1,6 +1,7 @@
 #pragma once
 // Registry of contact laws: a name usable in XML ("Adhesion/law") -> a factory building the device contact model
-// for the chosen substrate. Built in: "frictionless" (flat and rough substrates) and "stiction" (flat). A new law is
+// for the chosen substrate. Built in: "frictionless" (flat and rough substrates), "stiction" and "adhesive friction"
+// (flat; friction_integrand.hpp, a law with history and a non-symmetric tangent). A new law is
 // a device integrand (see elements/contact_face.hpp) plus one `add` call; nothing else changes.
 #include "contact/adhesion.hpp"
 

@@ -2,6 +2,8 @@
 // the energy and residual; the undeformed face at the equilibrium gap stores -w_adh per unit area.
 #include "contact/contact_face.hpp"
 
+#include "skewed_face.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,17 +24,9 @@ contact::LennardJones law()
 template <class Surface>
 void face_state(double X[Surface::nodes][3], double u[Surface::nodes][3])
 {
-  const double corners[4][2] = {{0.0, 0.0}, {6.0, 0.5}, {6.5, 5.0}, {0.2, 5.2}};
-  const double reference[9][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {0, -1}, {1, 0}, {0, 1}, {-1, 0}, {0, 0}};
+  test::skewed_face<Surface>(X);
   for (int k = 0; k < Surface::nodes; ++k) {
-    const double s = reference[k][0], t = reference[k][1];
-    const double N[4] = {0.25 * (1 - s) * (1 - t), 0.25 * (1 + s) * (1 - t), 0.25 * (1 + s) * (1 + t),
-                         0.25 * (1 - s) * (1 + t)};
-    X[k][0] = X[k][1] = X[k][2] = 0.0;
-    for (int c = 0; c < 4; ++c) {
-      X[k][0] += N[c] * corners[c][0];
-      X[k][1] += N[c] * corners[c][1];
-    }
+    const double s = test::face_node_parameters[k][0], t = test::face_node_parameters[k][1];
     u[k][0] = 0.05 * std::sin(1.0 + k);
     u[k][1] = 0.04 * std::cos(2.0 * k);
     u[k][2] = 0.12 * (s + 1.0) + 0.06 * (t + 1.0) + 0.03 * std::sin(3.0 * k);

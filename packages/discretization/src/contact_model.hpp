@@ -18,6 +18,10 @@ struct ContactFaceViews {
   Kokkos::View<const double*, device_type> areas;      // undeformed area of each face
   Kokkos::View<const double* [3], device_type> coordinates;   // reference positions of the local nodes
   Kokkos::View<const double* [3], device_type> anchors;       // where the stiction law measures travel from
+  // A law with state (ContactModel::history_size() > 0): per face, per quadrature point (a, b) at a order + b, its
+  // history values; `history` the committed state's, `trial_history` written by every assembly (empty: no state).
+  Kokkos::View<const double*, device_type> history;
+  Kokkos::View<double*, device_type> trial_history;
   int face_nodes = 4;
   int count = 0;
 };
@@ -27,6 +31,7 @@ struct ContactTotals {
   int active_faces = 0;      // faces integrated (some point within the cut-off)
   int skipped_faces = 0;     // faces certainly beyond the cut-off: not integrated
   int active_points = 0;     // quadrature points within the cut-off
+  double dissipated = 0.0;   // a law with state: energy dissipated up to the evaluated state [nN nm]
 };
 
 // The contact points a Newton step carries across the law's inflection (its strongest attraction, where its stiffness
@@ -54,6 +59,11 @@ public:
   virtual std::string description() const = 0;
   virtual double work_of_adhesion() const = 0;   // w_adh = -phi(r_eq) of the law [nN/nm]
   virtual int quadrature_order() const = 0;
+  // A law with state (adhesive friction): the history values per quadrature point, committed by the caller at
+  // converged states (DiscreteSystem::commit_contact_history); 0: none.
+  virtual int history_size() const { return 0; }
+  // false: the tangent is not symmetric (a sliding limit that depends on the gap); the linear solver factors LU.
+  virtual bool symmetric() const { return true; }
   virtual ContactTotals assemble(const ContactFaceViews& faces, const ElementScatter& scatter) const = 0;
   // This rank's sums of face_gap_changes (contact_face.hpp) from the state of `from` to that of `to` (the
   // scatters' displacements), a gap change above `fraction` r0 counting as large: crossing and large points, the

@@ -52,6 +52,7 @@ struct DiscreteSystem::Implementation : SystemTopology {
   Teuchos::RCP<Vector> state;                 // on the overlap map
   Teuchos::RCP<Vector> other_state;           // a second one, for comparing two states (made when first needed)
   DeviceView<int[1]> dropped_entries;   // ElementScatter::dropped (made once Kokkos is up, with the views)
+  DeviceView<double*> committed_history;   // contact_faces.history, writable (a contact law with state)
 
   Implementation(const mesh::HexMesh& mesh_, const mesh::Partition& partition, const Constraints& constraints,
                  const SolidParameters& solid_, Teuchos::RCP<const Teuchos::Comm<int>> comm_,
@@ -63,6 +64,20 @@ struct DiscreteSystem::Implementation : SystemTopology {
         coupling(Teuchos::rcp(new FEMultiVector(owned, graph->getImporter(), master_count))),
         state(Teuchos::rcp(new Vector(overlap))), dropped_entries("dropped tangent entries")
   {
+    if (history_per_face() > 0) {   // every point starts from zero: the undeformed pad
+      const std::size_t size = contact_faces.count * history_per_face();
+      committed_history = DeviceView<double*>("contact history", size);
+      contact_faces.history = committed_history;
+      contact_faces.trial_history = DeviceView<double*>("contact trial history", size);
+    }
+  }
+
+  // A contact law with state: its history values per face (0: none).
+  std::size_t history_per_face() const
+  {
+    if (!options.contact) return 0;
+    const std::size_t order = options.contact->quadrature_order();
+    return order * order * options.contact->history_size();
   }
 
   ElementScatter make_scatter(const std::array<double, master_count>& masters, bool with_matrix)
@@ -190,12 +205,13 @@ struct DiscreteSystem::Implementation : SystemTopology {
     Kokkos::deep_copy(h_inverted, inverted);
     std::int64_t bad = h_inverted(0);
     Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, bad, Teuchos::outArg(bad));
-    double sums[2] = {energy, contact.energy}, totals[2];
-    Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 2, sums, totals);
+    double sums[3] = {energy, contact.energy, contact.dissipated}, totals[3];
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 3, sums, totals);
     int counts[2] = {contact.active_faces, contact.skipped_faces}, count_totals[2];
     Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 2, counts, count_totals);
     result.internal_energy = totals[0];
     result.contact_energy = totals[1];
+    result.contact_dissipated = totals[2];
     result.active_contact_faces = count_totals[0];
     result.skipped_contact_faces = count_totals[1];
     result.admissible = bad == 0;
@@ -251,6 +267,43 @@ void DiscreteSystem::set_contact_anchors(const Vector& x)
     }
   Kokkos::deep_copy(anchors, host);
   impl.contact_faces.anchors = anchors;
+}
+
+bool DiscreteSystem::commit_contact_history(const Vector& x)
+{
+  auto& impl = *implementation_;
+  if (impl.history_per_face() == 0) return false;
+  impl.evaluate(x, nullptr, false);   // the trial histories at x
+  Kokkos::deep_copy(impl.committed_history, impl.contact_faces.trial_history);
+  return true;
+}
+
+// Each rank writes its own faces' values into the whole array, the sum over the ranks assembles it.
+std::vector<double> DiscreteSystem::contact_history() const
+{
+  const auto& impl = *implementation_;
+  const std::size_t per_face = impl.history_per_face();
+  if (per_face == 0) return {};
+  const auto local = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), impl.committed_history);
+  std::vector<double> mine(per_face * impl.space.faces.size(), 0.0), all(mine.size(), 0.0);
+  for (std::size_t f = 0; f < impl.faces.size(); ++f)
+    for (std::size_t k = 0; k < per_face; ++k) mine[impl.faces[f] * per_face + k] = local(f * per_face + k);
+  Teuchos::reduceAll(*impl.comm, Teuchos::REDUCE_SUM, static_cast<int>(mine.size()), mine.data(), all.data());
+  return all;
+}
+
+void DiscreteSystem::set_contact_history(const std::vector<double>& all)
+{
+  auto& impl = *implementation_;
+  const std::size_t per_face = impl.history_per_face();
+  if (all.size() != per_face * impl.space.faces.size())
+    throw std::runtime_error("a contact history of " + std::to_string(all.size()) + " values given, the system's has " +
+                             std::to_string(per_face * impl.space.faces.size()));
+  if (per_face == 0) return;
+  auto local = Kokkos::create_mirror_view(impl.committed_history);
+  for (std::size_t f = 0; f < impl.faces.size(); ++f)
+    for (std::size_t k = 0; k < per_face; ++k) local(f * per_face + k) = all[impl.faces[f] * per_face + k];
+  Kokkos::deep_copy(impl.committed_history, local);
 }
 
 GapChanges DiscreteSystem::contact_gap_changes(const Vector& from, const Vector& to, double fraction)

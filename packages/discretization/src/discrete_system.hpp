@@ -22,6 +22,7 @@
 #include <initializer_list>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace spatula::discretization {
 
@@ -48,6 +49,7 @@ struct Evaluation {
   std::int64_t inverted_element = -1;
   double internal_energy = 0.0;    // Pi_int of the half model [nN nm]
   double contact_energy = 0.0;     // Pi_c of the half model [nN nm] (0 without adhesion)
+  double contact_dissipated = 0.0; // a contact law with state: energy dissipated up to this state (half) [nN nm]
   int active_contact_faces = 0;    // contact faces integrated (all ranks)
   int skipped_contact_faces = 0;   // contact faces beyond the cut-off, not integrated
   std::array<double, master_count> master_residual{};   // moment [nN nm], lift and slide forces [nN] (half)
@@ -93,6 +95,13 @@ public:
   // Anchors the contact law at the state x: a law that measures tangential travel (stiction) measures it from the
   // nodes' positions in x from now on, instead of from the undeformed spatula. Collective.
   void set_contact_anchors(const Vector& x);
+  // A contact law with state (ContactModel::history_size() > 0): the state x is converged, its points' histories
+  // become the committed ones that the next evaluations start from. false: no such law, nothing done. Collective.
+  bool commit_contact_history(const Vector& x);
+  // The committed histories of all contact faces, face after face in the order of nodes().faces (every rank gets
+  // them; empty without a law with state), and setting them from such an array (a restart). Collective.
+  std::vector<double> contact_history() const;
+  void set_contact_history(const std::vector<double>& all);
   // The contact points whose gap crosses the law's inflection, or changes by more than `fraction` r0, from the state
   // `from` to the state `to` (all ranks; none without adhesion). Collective.
   GapChanges contact_gap_changes(const Vector& from, const Vector& to, double fraction);

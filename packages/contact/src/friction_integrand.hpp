@@ -1,0 +1,74 @@
+#pragma once
+// Adhesive friction on a flat substrate as a contact face integrand: the frictionless Lennard-Jones law along the
+// normal and the sliding law of adhesive_friction.hpp along the substrate, with a history at each quadrature point.
+//
+// The point's tangential travel s = (x - A)_{X,Y} is measured from its anchor A (its reference position unless a run
+// re-anchored the faces); its history holds the sliding anchor a relative to A (2 values, zero at the start: the
+// undeformed pad is traction-free) and the energy dissipated there per unit area (1 value). The gradient is
+// (t_X, t_Y, phi'(g)), g = z - h; the Hessian is d t / d s, d t / d g and phi''(g): not symmetric in slip (the sliding
+// limit depends on g, the normal traction not on s).
+//
+// The energy density is phi(g) plus the friction's incremental potential at fixed sliding limit tau = tau(g),
+//   stick: eps_T |s - a|^2 / 2,   slip: tau |s - a| - tau^2 / (2 eps_T),
+// whose derivative along s is the traction t: exact for tangential motion at fixed gap, the normal-tangential
+// coupling has no potential. Without a history (the front diagnostics' five-argument evaluate) the integrand is the
+// normal law alone.
+#include "contact/adhesive_friction.hpp"
+#include "contact/contact_face.hpp"
+
+namespace spatula::contact {
+
+struct AdhesiveFrictionIntegrand {
+  FrictionlessIntegrand<FlatSubstrate> normal;
+  AdhesiveFriction friction;
+  static constexpr int history_size = 3;   // sliding anchor (X, Y) relative to A [nm], dissipated [nN/nm]
+  static constexpr bool symmetric = false;
+  KOKKOS_INLINE_FUNCTION static double dissipated(const double* history) { return history[2]; }
+
+  KOKKOS_INLINE_FUNCTION double far_bound(const double x[3]) const { return normal.far_bound(x); }
+  // Beyond both the normal law's cut-off and the friction's (where the sliding limit is zero).
+  KOKKOS_INLINE_FUNCTION double cut_off() const
+  {
+    const double friction_end = 1.25 * friction.cutoff;
+    return normal.cut_off() > friction_end ? normal.cut_off() : friction_end;
+  }
+  KOKKOS_INLINE_FUNCTION double gap(const double x[3]) const { return normal.gap(x); }
+  KOKKOS_INLINE_FUNCTION double inflection() const { return normal.inflection(); }
+  KOKKOS_INLINE_FUNCTION double range() const { return normal.range(); }
+
+  // The normal law alone.
+  KOKKOS_INLINE_FUNCTION bool evaluate(const double A[3], const double x[3], double& phi, double gradient[3],
+                                       double (*H)[3]) const
+  {
+    return normal.evaluate(A, x, phi, gradient, H);
+  }
+
+  // With the point's history `in` (history_size values); writes the trial history to `out`.
+  KOKKOS_INLINE_FUNCTION bool evaluate(const double A[3], const double x[3], const double* in, double* out,
+                                       double& phi, double gradient[3], double (*H)[3]) const
+  {
+    const bool normal_active = normal.evaluate(A, x, phi, gradient, H);
+    const double g = normal.gap(x);
+    const double s[2] = {x[0] - A[0], x[1] - A[1]};
+    FrictionHistory history;
+    history.anchor[0] = in[0];
+    history.anchor[1] = in[1];
+    history.dissipated = in[2];
+    const FrictionResponse response = friction.evaluate(g, s, history);
+    out[0] = response.trial.anchor[0];
+    out[1] = response.trial.anchor[1];
+    out[2] = response.trial.dissipated;
+    const double tau = response.limit, stiffness = friction.stiffness;
+    const double travel = ::sqrt((s[0] - in[0]) * (s[0] - in[0]) + (s[1] - in[1]) * (s[1] - in[1]));
+    phi += response.sliding ? tau * travel - 0.5 * tau * tau / stiffness : 0.5 * stiffness * travel * travel;
+    for (int i = 0; i < 2; ++i) gradient[i] += response.traction[i];
+    if (H)
+      for (int i = 0; i < 2; ++i) {
+        for (int j = 0; j < 2; ++j) H[i][j] += response.d_position[i][j];
+        H[i][2] += response.d_gap[i];
+      }
+    return normal_active || tau > 0.0 || response.traction[0] != 0.0 || response.traction[1] != 0.0;
+  }
+};
+
+}  // namespace spatula::contact

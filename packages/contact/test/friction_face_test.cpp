@@ -1,0 +1,178 @@
+// Adhesive friction on contact faces (friction_integrand.hpp through contact_face.hpp): the residual and the
+// non-symmetric tangent against finite differences with some points sticking and some sliding (Q1C1 and Q1C2);
+// a face slid along the substrate at the equilibrium gap through stick, slip and stick again, its force and its
+// dissipated energy against the exact values; and the history: trial histories from the face, the start (no
+// history) traction-free.
+#include "contact/friction_integrand.hpp"
+
+#include "skewed_face.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+using namespace spatula;
+
+namespace {
+
+contact::AdhesiveFrictionIntegrand integrand(contact::AdhesiveFriction::Limit limit)
+{
+  contact::LennardJones lj;
+  lj.r_reg = 0.8 * lj.equilibrium_gap();
+  lj.r_cut = 5.0;
+  contact::AdhesiveFriction friction;
+  friction.law = lj;
+  friction.limit = limit;
+  friction.coefficient = 0.3;
+  friction.strength = 0.02;   // nN/nm^2
+  friction.stiffness = 5.0;   // nN/nm^3
+  friction.cutoff = 0.5;   // nm: the lifted corner of the face below reaches the switch-off band
+  return {{lj, {-lj.equilibrium_gap()}}, friction};
+}
+
+// A 6 nm x 5 nm face on Z = 0 (slightly skewed), lifted unevenly by up to 0.5 nm and slid by a few hundredths of
+// a nm: some points stick, some slide against the history below.
+template <class Surface>
+void face_state(double X[Surface::nodes][3], double u[Surface::nodes][3])
+{
+  test::skewed_face<Surface>(X);
+  for (int k = 0; k < Surface::nodes; ++k) {
+    const double s = test::face_node_parameters[k][0], t = test::face_node_parameters[k][1];
+    u[k][0] = 0.01 + 0.004 * (s + 1.0) + 0.002 * std::sin(1.0 + k);
+    u[k][1] = -0.003 * (t + 1.0) + 0.001 * std::cos(2.0 * k);
+    u[k][2] = 0.25 * (s + 1.0) + 0.05 * std::sin(3.0 * k) - 0.02;
+  }
+}
+
+// The tangent against central differences of the residual at the same history in: some points stick, some slide.
+template <class Surface>
+void expect_consistent(const contact::AdhesiveFrictionIntegrand& law)
+{
+  constexpr int n = Surface::nodes, dofs = 3 * n, order = 4, kept = contact::AdhesiveFrictionIntegrand::history_size;
+  double X[n][3], u[n][3], r[dofs], K[dofs][dofs];
+  face_state<Surface>(X, u);
+  std::vector<double> history(order * order * kept), trial(order * order * kept);
+  for (int p = 0; p < order * order; ++p) {   // anchors scattered around the travel: some points beyond the limit
+    history[p * kept] = 0.012 + 0.006 * std::sin(1.7 * p);
+    history[p * kept + 1] = -0.002 + 0.004 * std::cos(2.3 * p);
+  }
+  contact::contact_face<Surface>(law, X, X, u, order, r, K, history.data(), trial.data());
+  int sliding = 0, sticking = 0;
+  for (int p = 0; p < order * order; ++p) {
+    const bool moved = trial[p * kept] != history[p * kept] || trial[p * kept + 1] != history[p * kept + 1];
+    (moved ? sliding : sticking) += 1;
+  }
+  EXPECT_GT(sliding, 0);
+  EXPECT_GT(sticking, 0);
+  const double h = 1e-7;
+  double worst = 0.0, largest = 0.0, asymmetry = 0.0;
+  for (int q = 0; q < dofs; ++q) {
+    double up[n][3], um[n][3], rp[dofs], rm[dofs];
+    std::copy(&u[0][0], &u[0][0] + dofs, &up[0][0]);
+    std::copy(&u[0][0], &u[0][0] + dofs, &um[0][0]);
+    up[q / 3][q % 3] += h;
+    um[q / 3][q % 3] -= h;
+    contact::contact_face<Surface>(law, X, X, up, order, rp, nullptr, history.data());
+    contact::contact_face<Surface>(law, X, X, um, order, rm, nullptr, history.data());
+    for (int p = 0; p < dofs; ++p) {
+      worst = std::max(worst, std::abs((rp[p] - rm[p]) / (2 * h) - K[p][q]));
+      largest = std::max(largest, std::abs(K[p][q]));
+      asymmetry = std::max(asymmetry, std::abs(K[p][q] - K[q][p]));
+    }
+  }
+  EXPECT_LT(worst / largest, 1e-6);
+  EXPECT_GT(asymmetry / largest, 1e-4);   // slip couples the tangential traction to the gap, not the reverse
+}
+
+// A flat face at the equilibrium gap slid uniformly along X by `slide` from the history `in`: its X force.
+double slid_face_force(const contact::AdhesiveFrictionIntegrand& law, double slide, const std::vector<double>& in,
+                       std::vector<double>& out, double& dissipated)
+{
+  using Surface = elements::Quad9Surface;
+  double X[9][3], u[9][3], r[27];
+  for (int k = 0; k < 9; ++k) {
+    X[k][0] = 2.0 * (test::face_node_parameters[k][0] + 1.0);   // 4 nm x 3 nm
+    X[k][1] = 1.5 * (test::face_node_parameters[k][1] + 1.0);
+    X[k][2] = 0.0;
+    u[k][0] = slide;
+    u[k][1] = u[k][2] = 0.0;
+  }
+  const auto result = contact::contact_face<Surface>(law, X, X, u, 3, r, nullptr, in.data(), out.data());
+  dissipated = result.dissipated;
+  double force = 0.0;
+  for (int k = 0; k < 9; ++k) force += r[3 * k];
+  return force;
+}
+
+void expect_stick_slip_stick(const contact::AdhesiveFrictionIntegrand& law, double tau)
+{
+  const double area = 12.0, stiffness = law.friction.stiffness, onset = tau / stiffness;   // slip starts at tau / eps
+  std::vector<double> committed(9 * 3, 0.0), trial(9 * 3);
+  double dissipated;
+  // Stick: the elastic spring.
+  EXPECT_NEAR(slid_face_force(law, 0.5 * onset, committed, trial, dissipated), stiffness * 0.5 * onset * area,
+              1e-12 * tau * area);
+  EXPECT_EQ(dissipated, 0.0);
+  // Slip, reached in two converged states: the force on the limit, the energy dissipated = limit x slip.
+  slid_face_force(law, 2.0 * onset, committed, trial, dissipated);
+  committed = trial;
+  EXPECT_NEAR(slid_face_force(law, 3.0 * onset, committed, trial, dissipated), tau * area, 1e-12 * tau * area);
+  EXPECT_NEAR(dissipated, tau * area * 2.0 * onset, 1e-12 * tau * area * onset);
+  committed = trial;
+  // Back by less than twice the elastic range: stick again, the force falling with the spring's stiffness.
+  EXPECT_NEAR(slid_face_force(law, 2.5 * onset, committed, trial, dissipated), tau * area - stiffness * 0.5 * onset * area,
+              1e-12 * tau * area);
+  EXPECT_NEAR(dissipated, tau * area * 2.0 * onset, 1e-12 * tau * area * onset);
+  // And on back to the opposite limit.
+  EXPECT_NEAR(slid_face_force(law, 0.0, committed, trial, dissipated), -tau * area, 1e-12 * tau * area);
+}
+
+}  // namespace
+
+TEST(FrictionFace, TangentsMatchFiniteDifferencesInStickAndSlip)
+{
+  for (auto limit : {contact::AdhesiveFriction::Limit::extended_amontons,
+                     contact::AdhesiveFriction::Limit::constant_strength}) {
+    const auto law = integrand(limit);
+    expect_consistent<elements::Quad4Surface>(law);
+    expect_consistent<elements::Quad9Surface>(law);
+  }
+}
+
+TEST(FrictionFace, ConstantStrengthSlidesAtTheStrengthTimesTheArea)
+{
+  const auto law = integrand(contact::AdhesiveFriction::Limit::constant_strength);
+  expect_stick_slip_stick(law, law.friction.strength);
+}
+
+// At the equilibrium gap the normal traction is zero, so the extended Amontons limit is mu t_max.
+TEST(FrictionFace, ExtendedAmontonsAtTheEquilibriumGapSlidesAtMuTimesTheStrongestAttraction)
+{
+  const auto law = integrand(contact::AdhesiveFriction::Limit::extended_amontons);
+  expect_stick_slip_stick(law, law.friction.coefficient * law.friction.law.max_traction());
+}
+
+// Without a history the face starts from its undeformed anchors: no tangential force; with one it carries the
+// frictionless law's normal force and energy, and the friction's elastic energy in stick.
+TEST(FrictionFace, UndeformedStartIsTractionFreeAndStickStoresTheSpringEnergy)
+{
+  const auto law = integrand(contact::AdhesiveFriction::Limit::constant_strength);
+  std::vector<double> none(27, 0.0), trial(27);
+  double dissipated;
+  EXPECT_NEAR(slid_face_force(law, 0.0, none, trial, dissipated), 0.0, 1e-14);
+  double X[9][3] = {}, u[9][3] = {}, r_friction[27], r_frictionless[27];
+  const double slide = 0.3 * law.friction.strength / law.friction.stiffness;
+  for (int k = 0; k < 9; ++k) {
+    X[k][0] = 2.0 * (test::face_node_parameters[k][0] + 1.0);
+    X[k][1] = 1.5 * (test::face_node_parameters[k][1] + 1.0);
+    u[k][0] = slide;
+    u[k][2] = 0.1 * test::face_node_parameters[k][0];
+  }
+  const auto with = contact::contact_face<elements::Quad9Surface>(law, X, X, u, 3, r_friction);
+  const auto without = contact::contact_face<elements::Quad9Surface>(law.normal, X, X, u, 3, r_frictionless);
+  EXPECT_NEAR(with.energy - without.energy, 0.5 * law.friction.stiffness * slide * slide * with.area,
+              1e-12 * std::abs(without.energy));
+  for (int k = 0; k < 9; ++k) EXPECT_NEAR(r_friction[3 * k + 2], r_frictionless[3 * k + 2], 1e-14);
+}

@@ -1,0 +1,119 @@
+// Adhesive friction in the discrete system: a block resting on the substrate at the equilibrium gap, its top face
+// slid along X (rotation and lift held). Once the whole contact face slides, the X force on the top face is the
+// sliding limit times the contact area, the energy dissipated grows by that force times the slide and the work of
+// the force balances it; slid back, the block sticks, then slides the other way at the opposite force. The
+// constant-strength limit makes these exact (tau_0 does not depend on the gap). Runs on 1 and 2 ranks (each rank's
+// faces keep their own history).
+#include "analysis/load_stepping.hpp"
+#include "contact/adhesion.hpp"
+#include "discretization/discrete_system.hpp"
+#include "mesh/box_mesh.hpp"
+#include "mesh/partition.hpp"
+#include "solvers/newton.hpp"
+
+#include <Teuchos_DefaultComm.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+using namespace spatula;
+using discretization::Master;
+using discretization::MasterControl;
+
+namespace {
+
+struct SlidingBlock {
+  static constexpr double a = 8.0, height = 4.0;   // a x a/2 modelled (symmetry Y = 0), height H [nm]
+  static constexpr double strength = 0.02;        // tau_0 [nN/nm^2]
+  mesh::HexMesh mesh;
+  Teuchos::RCP<discretization::DiscreteSystem> system;
+  std::unique_ptr<solvers::LinearSolverFactory> linear;
+  Teuchos::RCP<solvers::SpatulaModel> model;
+  std::unique_ptr<solvers::NewtonSolver> newton;
+
+  SlidingBlock()
+  {
+    mesh::BoxParameters box;
+    box.lengths = {a, 0.5 * a, height};
+    box.elements = {4, 2, 2};
+    mesh = mesh::box_mesh(box);
+    discretization::Constraints constraints;
+    constraints.fixed.push_back({mesh.nodes(mesh::Boundary::symmetry), 1});
+    for (std::int64_t n = 0; n < mesh.node_count(); ++n)
+      if (mesh.coordinates[n][2] == height) constraints.rigid_nodes.push_back(n);
+    constraints.rigid_centre = {0.5 * a, 0.0, height};
+    contact::AdhesionSettings adhesion;
+    adhesion.law = "adhesive friction";
+    adhesion.enrichment = discretization::Enrichment::q1c2;
+    adhesion.quadrature = 6;
+    adhesion.lennard_jones.r_reg = 0.8 * adhesion.lennard_jones.equilibrium_gap();
+    adhesion.lennard_jones.r_cut = 10.0;
+    adhesion.substrate_height = -adhesion.lennard_jones.equilibrium_gap();
+    adhesion.friction.law = adhesion.lennard_jones;
+    adhesion.friction.limit = contact::AdhesiveFriction::Limit::constant_strength;
+    adhesion.friction.strength = strength;
+    adhesion.friction.stiffness = 5.0;
+    auto comm = Teuchos::DefaultComm<int>::getComm();
+    const auto partition = mesh::partition_mesh(mesh, comm->getSize());
+    const auto contact = contact::make_contact_model(adhesion);
+    EXPECT_FALSE(contact->symmetric());
+    EXPECT_EQ(contact->history_size(), 3);
+    system = Teuchos::rcp(new discretization::DiscreteSystem(mesh, partition, constraints, {}, comm,
+                                                             {adhesion.enrichment, contact}));
+    solvers::LinearSolverParameters linear_parameters;
+    linear_parameters.refactor = solvers::RefactorRule::lag;
+    linear_parameters.mumps.symmetric = false;
+    linear = std::make_unique<solvers::LinearSolverFactory>(linear_parameters);
+    model = Teuchos::rcp(new solvers::SpatulaModel(system, linear->lows_factory()));
+    newton = std::make_unique<solvers::NewtonSolver>(model, solvers::NewtonParameters{}, *linear);
+  }
+};
+
+}  // namespace
+
+TEST(FrictionSystem, ASlidingBlockPullsWithTheStrengthTimesTheAreaAndDissipatesItsWork)
+{
+  SlidingBlock block;
+  analysis::LoadPath path(*block.model, *block.newton, nullptr, false);
+  analysis::StepParameters steps;
+  steps.initial = steps.maximum = 0.1;
+  const auto slide_to = [&](double u) {
+    return path.advance(Master::slide, u, MasterControl::moving(Master::slide), steps, 1.0, {});
+  };
+  const double limit = SlidingBlock::strength * block.system->contact_area();   // half model [nN]
+  EXPECT_NEAR(block.system->contact_area(), 0.5 * SlidingBlock::a * SlidingBlock::a, 1e-12);
+
+  // Sticking: an elastic body, whose work is the energy it stores.
+  ASSERT_FALSE(slide_to(0.001).has_value());
+  const auto stick = path.last();
+  const double stored_stick = stick.internal_energy + stick.contact_energy - path.points().front().internal_energy -
+                              path.points().front().contact_energy;
+  std::cout << "stick: work " << stick.external_work << " stored " << stored_stick << " sliding " << stick.sliding << "\n";
+  EXPECT_EQ(stick.sliding, 0.0);
+  EXPECT_NEAR(stick.external_work, stored_stick, 1e-6 * stick.external_work);
+  // Sliding: the force on the limit, the dissipation growing by force x slide, the work balancing it.
+  ASSERT_FALSE(slide_to(1.0).has_value());
+  const auto first = path.last();
+  EXPECT_NEAR(first.slide_force, limit, 1e-4 * limit);
+  ASSERT_FALSE(slide_to(2.0).has_value());
+  const auto second = path.last();
+  EXPECT_NEAR(second.slide_force, limit, 1e-4 * limit);
+  EXPECT_NEAR(second.sliding - first.sliding, limit * 1.0, 1e-4 * limit);
+  const double stored = (second.internal_energy + second.contact_energy) - (first.internal_energy + first.contact_energy);
+  EXPECT_NEAR(second.external_work - first.external_work, stored + (second.sliding - first.sliding), 1e-4 * limit);
+
+  // Back a little: the block sticks, the force falls but keeps its sign, nothing more is dissipated at first.
+  ASSERT_FALSE(slide_to(1.95).has_value());
+  const auto unloaded = path.last();
+  EXPECT_GT(unloaded.slide_force, 0.0);
+  EXPECT_LT(unloaded.slide_force, 0.95 * limit);
+  EXPECT_NEAR(unloaded.sliding, second.sliding, 1e-9 * limit);
+  // Further back: it slides the other way at the opposite force.
+  ASSERT_FALSE(slide_to(1.0).has_value());
+  EXPECT_NEAR(path.last().slide_force, -limit, 1e-4 * limit);
+  std::cout << "limit " << limit << " nN: X force " << first.slide_force << " at 1 nm, " << second.slide_force
+            << " at 2 nm (dissipated " << second.sliding - first.sliding << " nN nm between), "
+            << unloaded.slide_force << " back at 1.95 nm, " << path.last().slide_force << " back at 1 nm\n";
+  EXPECT_GT(path.last().sliding, second.sliding + 0.5 * limit);
+}

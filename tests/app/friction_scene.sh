@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# The adhesive friction law in the app, on the coarse adhesive rotation: with the friction coefficient 0 it follows
+# the frictionless law (M_y and Pi_sa to 1e-6 at Newton's tolerance 1e-9); with mu = 0.3 the pad's sliding shows
+# (another moment, energy dissipated by sliding, the energy balance held); and a friction run stopped by SIGTERM and
+# restarted from its last state (the contact points' histories stored with it) starts from the stopped state exactly
+# and ends where the uninterrupted run ends (to 1e-4: with friction the state depends a little on the steps). A frictionless checkpoint cannot restart a friction scene (no history): an input error naming the key.
+# usage: friction_scene.sh <spatula> <source dir>
+set -u
+app=$1
+source_dir=$2
+source "$source_dir/tests/app/rotation_scene.sh"
+enter_scratch_directory
+export OPENBLAS_NUM_THREADS=1
+check_counts
+friction() {   # <directory> <final theta_y> <coefficient> [extra Loading parameters]: the rotation with friction
+  rotation_scene "$1" "$2" "<ParameterList name=\"Friction\"><Parameter name=\"coefficient\" type=\"double\" value=\"$3\"/></ParameterList>" "${4:-}" |
+    sed 's#value="frictionless"#value="adhesive friction"#' | tight_newton
+}
+rotation_scene frictionless 10 | tight_newton > frictionless.xml
+friction none 10 0 > none.xml
+friction sliding 10 0.3 > sliding.xml
+for name in frictionless none sliding; do
+  "$app" $name.xml > $name.log 2>&1 || { fail "the $name rotation"; tail -5 $name.log; }
+done
+/usr/bin/python3 - <<'PY' || fail "friction against frictionless"
+import csv
+rows = {name: list(csv.DictReader(open(f'{name}/curve.csv'))) for name in ('frictionless', 'none', 'sliding')}
+assert abs(float(rows['none'][-1]['theta_y_deg']) - 10) < 1e-9
+# (LU factors instead of LDL^T change Newton's iteration counts, so the step sizes may differ: the states at the
+# same inclination are compared, the final one always.)
+common = 0
+for a in rows['frictionless']:
+    for b in rows['none']:
+        if abs(float(a['theta_y_deg']) - float(b['theta_y_deg'])) < 1e-9:
+            common += 1
+            for key in ('M_y_nNnm', 'Pi_sa_1e-18J'):
+                x, y = float(a[key]), float(b[key])
+                assert abs(x - y) <= 1e-6 * max(1.0, abs(x)), ('mu = 0', a['theta_y_deg'], key, x, y)
+assert common >= 3, common
+last, free = rows['sliding'][-1], rows['frictionless'][-1]
+moment, moment_free = float(last['M_y_nNnm']), float(free['M_y_nNnm'])
+dissipated = float(last['dissipated_per_Pi_c0'])
+assert abs(moment / moment_free - 1) > 1e-4, (moment, moment_free)
+assert dissipated > 0, dissipated
+assert max(float(r['balance_error_per_Pi_c0']) for r in rows['sliding']) < 1e-3
+print(f"mu = 0 follows the frictionless rotation over {len(rows['none'])} states; mu = 0.3: M_y {moment:.4f} against "
+      f"{moment_free:.4f} nN nm at 10 deg, dissipated {dissipated:.3e} Pi_c0")
+PY
+passed "friction coefficient 0 and 0.3"
+
+friction stopped 10 0.3 > stopped.xml
+"$app" stopped.xml > stopped.log 2>&1 &
+pid=$!
+wait_for_step stopped.log 3 || fail "the stopped run did not start"
+kill -TERM "$pid"
+wait "$pid"
+[ -s stopped.incomplete/checkpoints.h5 ] || fail "no checkpoint from the stopped run"
+friction resumed 10 0.3 "<Parameter name=\"restart file\" type=\"string\" value=\"stopped.incomplete/checkpoints.h5\"/>
+  <Parameter name=\"restart from\" type=\"string\" value=\"last state\"/>" > resumed.xml
+"$app" resumed.xml > resumed.log 2>&1 || { fail "the restarted friction run"; tail -5 resumed.log; }
+/usr/bin/python3 - <<'PY' || fail "the restarted friction run ends elsewhere"
+import csv
+stopped, resumed, uninterrupted = (list(csv.DictReader(open(f'{name}/curve.csv')))
+                                   for name in ('stopped.incomplete', 'resumed', 'sliding'))
+# The restart state measured again from the stored histories is the stopped run's last state: its moment (the
+# tangential tractions hold the pad) and its stored energy (the friction springs') to the last digits.
+for key in ('theta_y_deg', 'M_y_nNnm', 'Pi_sa_1e-18J', 'dissipated_per_Pi_c0'):
+    x, y = float(stopped[-1][key]), float(resumed[0][key])
+    assert abs(x - y) <= 1e-9 * max(1e-6, abs(x)), ('restart state', key, x, y)
+# From there its steps differ from the uninterrupted run's (the predictor starts afresh), and with friction the state
+# depends on the steps a little (the return mapping over another increment): the same final state to 1e-4.
+for key in ('theta_y_deg', 'M_y_nNnm', 'Pi_sa_1e-18J'):
+    x, y = float(uninterrupted[-1][key]), float(resumed[-1][key])
+    assert abs(x - y) <= 1e-4 * max(1.0, abs(x)), (key, x, y)
+print(f"restart state as stopped (M_y {float(resumed[0]['M_y_nNnm']):.6f} nN nm); at 10 deg M_y "
+      f"{float(resumed[-1]['M_y_nNnm']):.4f}, uninterrupted {float(uninterrupted[-1]['M_y_nNnm']):.4f} nN nm")
+PY
+passed "a friction run restarted from its last state"
+
+rotation_scene checkpointed 4 "" "<Parameter name=\"checkpoints at theta_y\" type=\"string\" value=\"4\"/>" > checkpointed.xml
+"$app" checkpointed.xml > checkpointed.log 2>&1 || fail "the frictionless rotation with a checkpoint"
+friction from-frictionless 10 0.3 "<Parameter name=\"restart file\" type=\"string\" value=\"checkpointed/checkpoints.h5\"/>
+  <Parameter name=\"restart theta_y\" type=\"double\" value=\"4\"/>" > from-frictionless.xml
+status=0
+"$app" from-frictionless.xml > from-frictionless.log 2> from-frictionless.err || status=$?
+[ "$status" -eq 2 ] && grep -qF "holds no contact history for 'Adhesion/law' = 'adhesive friction'" from-frictionless.err ||
+  { fail "a frictionless checkpoint restarting a friction scene: exit $status"; cat from-frictionless.err; }
+passed "a frictionless checkpoint refused"
+[ "$failures" -eq 0 ]
