@@ -90,6 +90,10 @@ std::vector<double> scene_masters(io::Hdf5File& in, const std::string& group, co
   return masters;
 }
 
+// A restart whose contact anchors are set at the restart state (not a resumed run, which has its own): a contact
+// law with state then starts there with no tangential traction, its history cleared.
+bool starts_relaxed(const Scene& scene) { return scene.adhesion.settings.anchor_at_restart && !scene.resume; }
+
 std::string restart_key(const Scene& scene)
 {
   return "parameter 'Loading/restart file' = '" + scene.loading.restart_file + "'";
@@ -288,8 +292,9 @@ void check_checkpoint(const Scene& scene, const discretization::NodeSpace& nodes
   if (stored_history.size() < 5 || in->read_doubles(group + "/masters").size() != discretization::master_count ||
       in->read_doubles(group + "/displacements").size() != 3 * static_cast<std::size_t>(nodes.node_count()))
     throw parameters::InputError(restart_key(scene) + ": checkpoint '" + label + "' is incomplete");
-  // A contact law with state goes on from the points' histories stored with the state.
-  if (scene.adhesion.enabled) {
+  // A contact law with state goes on from the points' histories stored with the state, unless its anchors are set
+  // at the restart state (then it starts there relaxed, as from the undeformed state).
+  if (scene.adhesion.enabled && !starts_relaxed(scene)) {
     const auto contact = contact::make_contact_model(scene.adhesion.settings);
     const std::size_t order = contact->quadrature_order();
     const std::size_t expected = nodes.faces.size() * order * order * contact->history_size();
@@ -299,7 +304,7 @@ void check_checkpoint(const Scene& scene, const discretization::NodeSpace& nodes
           restart_key(scene) + ": checkpoint '" + label + "' holds no contact history for 'Adhesion/law' = '" +
           scene.adhesion.settings.law + "' with " + std::to_string(order) + " x " + std::to_string(order) +
           " points per face (it was written with another law or quadrature); a law with state goes on only from its "
-          "own states");
+          "own states, or from any with 'Adhesion/stiction anchors' = 'restart state' (it then starts there, relaxed)");
   }
   // The stage it lies in must be one of this scene's path (a scene without loading follows none).
   if (!scene.loading.stages.empty() && in->exists(group + "/stage")) {
@@ -318,7 +323,8 @@ analysis::LoadPoint read_checkpoint(const Scene& scene, discretization::Discrete
   io::Hdf5File in(scene.loading.restart_file, io::Hdf5File::Mode::read);
   const std::string group = "/checkpoints/" + restart_label(scene.loading);
   set_state(system, in.read_doubles(group + "/displacements"), scene_masters(in, group, "masters", scene), x);
-  if (in.exists(group + "/contact history")) system.set_contact_history(in.read_doubles(group + "/contact history"));
+  if (in.exists(group + "/contact history") && !starts_relaxed(scene))
+    system.set_contact_history(in.read_doubles(group + "/contact history"));
   const auto h = in.read_doubles(group + "/history");
   analysis::LoadPoint point;
   point.step = static_cast<int>(h[0]);

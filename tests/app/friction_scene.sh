@@ -3,7 +3,9 @@
 # the frictionless law (M_y and Pi_sa to 1e-6 at Newton's tolerance 1e-9); with mu = 0.3 the pad's sliding shows
 # (another moment, energy dissipated by sliding, the energy balance held); and a friction run stopped by SIGTERM and
 # restarted from its last state (the contact points' histories stored with it) starts from the stopped state exactly
-# and ends where the uninterrupted run ends (to 1e-4: with friction the state depends a little on the steps). A frictionless checkpoint cannot restart a friction scene (no history): an input error naming the key.
+# and ends where the uninterrupted run ends (to 1e-4: with friction the state depends a little on the steps). A
+# frictionless checkpoint cannot restart a friction scene (no history): an input error naming the key; with
+# 'Adhesion/stiction anchors' = 'restart state' it can, the friction law starting there unstrained.
 # usage: friction_scene.sh <spatula> <source dir>
 set -u
 app=$1
@@ -77,13 +79,31 @@ print(f"restart state as stopped (M_y {float(resumed[0]['M_y_nNnm']):.6f} nN nm)
 PY
 passed "a friction run restarted from its last state"
 
-rotation_scene checkpointed 4 "" "<Parameter name=\"checkpoints at theta_y\" type=\"string\" value=\"4\"/>" > checkpointed.xml
+rotation_scene checkpointed 8 "" "<Parameter name=\"checkpoints at theta_y\" type=\"string\" value=\"8\"/>" > checkpointed.xml
 "$app" checkpointed.xml > checkpointed.log 2>&1 || fail "the frictionless rotation with a checkpoint"
 friction from-frictionless 10 0.3 "<Parameter name=\"restart file\" type=\"string\" value=\"checkpointed/checkpoints.h5\"/>
-  <Parameter name=\"restart theta_y\" type=\"double\" value=\"4\"/>" > from-frictionless.xml
+  <Parameter name=\"restart theta_y\" type=\"double\" value=\"8\"/>" > from-frictionless.xml
 status=0
 "$app" from-frictionless.xml > from-frictionless.log 2> from-frictionless.err || status=$?
 [ "$status" -eq 2 ] && grep -qF "holds no contact history for 'Adhesion/law' = 'adhesive friction'" from-frictionless.err ||
   { fail "a frictionless checkpoint restarting a friction scene: exit $status"; cat from-frictionless.err; }
 passed "a frictionless checkpoint refused"
+
+# With the anchors at the restart state the friction law starts there unstrained: the frictionless state is its
+# equilibrium too (the same moment and stored energy), and the rotation goes on from it with friction.
+friction relaxed 10 0.3 "<Parameter name=\"restart file\" type=\"string\" value=\"checkpointed/checkpoints.h5\"/>
+  <Parameter name=\"restart theta_y\" type=\"double\" value=\"8\"/>" |
+  sed 's#<ParameterList name="Friction">#<Parameter name="stiction anchors" type="string" value="restart state"/>&#' > relaxed.xml
+"$app" relaxed.xml > relaxed.log 2>&1 || { fail "a friction rotation from a frictionless state"; tail -5 relaxed.log; }
+/usr/bin/python3 - <<'PY' || fail "the relaxed start"
+import csv
+frictionless, relaxed = (list(csv.DictReader(open(f'{name}/curve.csv'))) for name in ('checkpointed', 'relaxed'))
+for key in ('theta_y_deg', 'M_y_nNnm', 'Pi_sa_1e-18J'):
+    x, y = float(frictionless[-1][key]), float(relaxed[0][key])
+    assert abs(x - y) <= 1e-9 * max(1e-6, abs(x)), ('restart state', key, x, y)
+assert abs(float(relaxed[-1]['theta_y_deg']) - 10) < 1e-9 and float(relaxed[-1]['dissipated_per_Pi_c0']) >= 0
+print(f"from the frictionless state at 8 deg (M_y {float(relaxed[0]['M_y_nNnm']):.4f} nN nm) to 10 deg with friction: "
+      f"M_y {float(relaxed[-1]['M_y_nNnm']):.4f} nN nm")
+PY
+passed "a friction run from a frictionless state, anchored there"
 [ "$failures" -eq 0 ]

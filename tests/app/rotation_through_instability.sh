@@ -70,7 +70,7 @@ lift free stiction "$anchors" '<Parameter name="free slide during lift" type="bo
 "$app" frictionless.xml > frictionless.log
 "$app" stiction.xml > stiction.log
 "$app" free.xml > free.log
-grep -q "stiction anchors set at this state" stiction.log
+grep -q "contact anchors set at this state" stiction.log
 /usr/bin/python3 - <<'PY'
 import csv
 a = list(csv.DictReader(open('frictionless/curve.csv')))

@@ -57,8 +57,9 @@ void AdhesionParameters::declare(Teuchos::ParameterList& adhesion)
                            "leave out faces whose every point is beyond the cut-off (false: integrate every face; "
                            "for measuring what the skip saves)");
   parameters::declare_string(adhesion, "stiction anchors", s.anchor_at_restart ? "restart state" : "undeformed",
-                             "where the stiction law measures a point's tangential travel from: its position in the "
-                             "undeformed spatula, or in the state the run restarts from ('Loading/restart file'; the "
+                             "where the stiction law measures a point's tangential travel from, and where adhesive "
+                             "friction's points start unstrained (their history cleared): the undeformed spatula, or "
+                             "the state the run restarts from ('Loading/restart file'; the "
                              "paper's Fig. 9 switches stiction on for the pull-off from the pre-rotated state)",
                              {"undeformed", "restart state"});
   declare_friction(adhesion);
