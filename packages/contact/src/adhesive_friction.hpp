@@ -48,41 +48,52 @@ struct AdhesiveFriction {
   double strength = 0.0;       // tau_0 [nN/nm^2] (constant strength)
   double stiffness = 10.0;     // eps_T [nN/nm^3], the elastic stick's tangential stiffness per unit area
   double cutoff = 1.0;         // g_c [nm]
+  bool variational = false;    // the contact integrand's update (friction_integrand.hpp): false the return mapping
 
-  // C(g) and C'(g): 1 up to g_c, smootherstep to 0 at 1.25 g_c.
-  KOKKOS_INLINE_FUNCTION void switch_off(double g, double& c, double& dc) const
+  // C(g), C'(g) and C''(g): 1 up to g_c, smootherstep to 0 at 1.25 g_c.
+  KOKKOS_INLINE_FUNCTION void switch_off(double g, double& c, double& dc, double& d2c) const
   {
     const double width = 0.25 * cutoff;
     if (g <= cutoff) {
       c = 1.0;
-      dc = 0.0;
+      dc = d2c = 0.0;
       return;
     }
     if (g >= cutoff + width) {
-      c = dc = 0.0;
+      c = dc = d2c = 0.0;
       return;
     }
     const double t = (g - cutoff) / width;
     c = 1.0 - t * t * t * (10.0 - 15.0 * t + 6.0 * t * t);
     dc = -30.0 * t * t * (1.0 - t) * (1.0 - t) / width;
+    d2c = -60.0 * t * (1.0 - t) * (1.0 - 2.0 * t) / (width * width);
   }
 
-  // tau(g) and tau'(g).
-  KOKKOS_INLINE_FUNCTION void sliding_limit(double g, double& tau, double& dtau) const
+  // tau(g), tau'(g) and tau''(g).
+  KOKKOS_INLINE_FUNCTION void sliding_limit(double g, double& tau, double& dtau, double& d2tau) const
   {
-    double c, dc;
-    switch_off(g, c, dc);
+    double c, dc, d2c;
+    switch_off(g, c, dc, d2c);
     if (limit == Limit::constant_strength) {
       tau = strength * c;
       dtau = strength * dc;
+      d2tau = strength * d2c;
       return;
     }
     double phi, dphi, d2phi;
     law.evaluate(g, phi, dphi, d2phi);
     const double lifted = -dphi + law.max_traction();   // T_n + t_max >= 0
-    const double positive = lifted > 0.0 ? lifted : 0.0;
-    tau = coefficient * positive * c;
-    dtau = coefficient * ((lifted > 0.0 ? -d2phi : 0.0) * c + positive * dc);
+    const bool positive = lifted > 0.0;
+    const double part = positive ? lifted : 0.0, slope = positive ? -d2phi : 0.0;
+    const double curvature = positive && c > 0.0 ? -law.third_derivative(g) : 0.0;
+    tau = coefficient * part * c;
+    dtau = coefficient * (slope * c + part * dc);
+    d2tau = coefficient * (curvature * c + 2.0 * slope * dc + part * d2c);
+  }
+  KOKKOS_INLINE_FUNCTION void sliding_limit(double g, double& tau, double& dtau) const
+  {
+    double d2tau;
+    sliding_limit(g, tau, dtau, d2tau);
   }
 
   // The response at gap g and tangential position s from the history `in`.

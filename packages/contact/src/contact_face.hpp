@@ -102,15 +102,18 @@ template <class Integrand>
 struct HistorySize<Integrand, std::void_t<decltype(Integrand::history_size)>> {
   static constexpr int value = Integrand::history_size;
 };
-// Whether an integrand's Hessian is symmetric: its `symmetric`, true where it declares none.
+// Whether an integrand's Hessian is symmetric: its symmetric_tangent(), true where it declares none.
 template <class Integrand, class = void>
-struct Symmetric {
-  static constexpr bool value = true;
-};
+struct DeclaresSymmetry : std::false_type {};
 template <class Integrand>
-struct Symmetric<Integrand, std::void_t<decltype(Integrand::symmetric)>> {
-  static constexpr bool value = Integrand::symmetric;
-};
+struct DeclaresSymmetry<Integrand, std::void_t<decltype(std::declval<const Integrand&>().symmetric_tangent())>>
+    : std::true_type {};
+template <class Integrand>
+bool symmetric_tangent(const Integrand& integrand)
+{
+  if constexpr (DeclaresSymmetry<Integrand>::value) return integrand.symmetric_tangent();
+  else return true;
+}
 
 // Quadrature point (a, b) of a face's order x order Gauss rule: its shape functions, reference position X, anchor A
 // and undeformed area element dA, and its current position for nodal displacements u.

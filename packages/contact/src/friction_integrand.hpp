@@ -8,11 +8,15 @@
 // (t_X, t_Y, phi'(g)), g = z - h; the Hessian is d t / d s, d t / d g and phi''(g): not symmetric in slip (the sliding
 // limit depends on g, the normal traction not on s).
 //
-// The energy density is phi(g) plus the friction's incremental potential at fixed sliding limit tau = tau(g),
+// The energy density is phi(g) plus the friction's incremental potential psi with the sliding limit tau = tau(g),
 //   stick: eps_T |s - a|^2 / 2,   slip: tau |s - a| - tau^2 / (2 eps_T),
-// whose derivative along s is the traction t: exact for tangential motion at fixed gap, the normal-tangential
-// coupling has no potential. Without a history (the front diagnostics' five-argument evaluate) the integrand is the
-// normal law alone.
+// whose derivative along s is the traction t. The return mapping (AdhesiveFriction::variational false) leaves out its derivative
+// along g, tau'(g) (|s - a| - tau / eps_T) in slip: the gradient is not that of the energy and the tangent is not
+// symmetric. The variational update (true: Ortiz and Stainier's variational constitutive updates) takes
+// the whole derivative of psi: the normal traction gains tau' times the step's slip (which vanishes with the step),
+// the energy is the step's potential and the tangent is symmetric (tau'' included), so the energy line search, the
+// jumps' descents and LDL^T factors see a consistent problem. Without a history (the front diagnostics'
+// five-argument evaluate) the integrand is the normal law alone.
 #include "contact/adhesive_friction.hpp"
 #include "contact/contact_face.hpp"
 
@@ -22,7 +26,7 @@ struct AdhesiveFrictionIntegrand {
   FrictionlessIntegrand<FlatSubstrate> normal;
   AdhesiveFriction friction;
   static constexpr int history_size = 3;   // sliding anchor (X, Y) relative to A [nm], dissipated [nN/nm]
-  static constexpr bool symmetric = false;
+  KOKKOS_INLINE_FUNCTION bool symmetric_tangent() const { return friction.variational; }
   KOKKOS_INLINE_FUNCTION static double dissipated(const double* history) { return history[2]; }
 
   KOKKOS_INLINE_FUNCTION double far_bound(const double x[3]) const { return normal.far_bound(x); }
@@ -67,6 +71,16 @@ struct AdhesiveFrictionIntegrand {
         for (int j = 0; j < 2; ++j) H[i][j] += response.d_position[i][j];
         H[i][2] += response.d_gap[i];
       }
+    if (friction.variational && response.sliding) {   // d psi / d g = tau' (|s - a| - tau / eps_T)
+      double limit, slope, curvature;
+      friction.sliding_limit(g, limit, slope, curvature);
+      const double slip = travel - tau / stiffness;
+      gradient[2] += slope * slip;
+      if (H) {
+        for (int i = 0; i < 2; ++i) H[2][i] += response.d_gap[i];
+        H[2][2] += curvature * slip - slope * slope / stiffness;
+      }
+    }
     return normal_active || tau > 0.0 || response.traction[0] != 0.0 || response.traction[1] != 0.0;
   }
 };

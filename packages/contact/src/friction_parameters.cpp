@@ -31,6 +31,12 @@ void declare_friction(Teuchos::ParameterList& adhesion)
   parameters::declare_double(friction, "stiffness", d.stiffness,
                              "eps_T, the elastic stick's tangential stiffness per unit area [nN/nm^3]",
                              Range::positive());
+  parameters::declare_string(friction, "update", d.variational ? "variational" : "return mapping",
+                             "return mapping: the sliding law as published (its tangent not symmetric); variational: "
+                             "each step minimizes its incremental energy (the normal traction gains tau'(g) times the "
+                             "step's slip, which vanishes with the step; a symmetric tangent, an energy the line "
+                             "search and the jumps' descents can use)",
+                             {"return mapping", "variational"});
   parameters::declare_double(friction, "cut-off", d.cutoff,
                              "gap g_c up to which the limit acts in full; it fades to zero at 1.25 g_c [nm]",
                              Range::positive());
@@ -46,6 +52,11 @@ AdhesiveFriction read_friction(const Teuchos::ParameterList& adhesion, const Len
   friction.strength = list.get<double>("strength");
   friction.stiffness = list.get<double>("stiffness");
   friction.cutoff = list.get<double>("cut-off");
+  friction.variational = list.get<std::string>("update") == "variational";
+  if (1.25 * friction.cutoff > 0.5 * law.r_cut)
+    parameters::fail("Adhesion/Friction/cut-off", friction.cutoff,
+                     "must be at most 0.4 'Adhesion/cut-off' = " + std::to_string(0.4 * law.r_cut) +
+                         " nm: the friction acts where the Lennard-Jones law is not yet blended out");
   return friction;
 }
 

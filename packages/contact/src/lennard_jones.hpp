@@ -45,6 +45,16 @@ struct LennardJones {
     d2phi = (c / (r0 * r0)) * (s8 * s2 / 5.0 - s4);
   }
 
+  // phi''' where the law is exact or regularized (r <= r_cut / 2; 0 below r_reg, where phi is quadratic): the
+  // sliding limit of adhesive friction needs it within its own cut-off, which lies there.
+  KOKKOS_INLINE_FUNCTION double third_derivative(double r) const
+  {
+    if (r < r_reg) return 0.0;
+    const double s = r0 / r, s2 = s * s, s5 = s2 * s2 * s, s11 = s5 * s5 * s;
+    const double c = hamaker / (2.0 * M_PI * r0 * r0);
+    return -(c / (r0 * r0 * r0)) * (2.0 * s11 - 4.0 * s5);
+  }
+
   // phi, phi' and phi'' with regularization and cut-off. Returns false beyond the cut-off (all three constant/0).
   KOKKOS_INLINE_FUNCTION bool evaluate(double r, double& phi, double& dphi, double& d2phi) const
   {

@@ -86,6 +86,43 @@ void expect_consistent(const contact::AdhesiveFrictionIntegrand& law)
   EXPECT_GT(asymmetry / largest, 1e-4);   // slip couples the tangential traction to the gap, not the reverse
 }
 
+// The variational update: the residual is the derivative of the energy and the tangent that of the residual, and
+// it is symmetric, with points sticking and sliding.
+template <class Surface>
+void expect_variational(const contact::AdhesiveFrictionIntegrand& law)
+{
+  constexpr int n = Surface::nodes, dofs = 3 * n, order = 4, kept = contact::AdhesiveFrictionIntegrand::history_size;
+  double X[n][3], u[n][3], r[dofs], K[dofs][dofs];
+  face_state<Surface>(X, u);
+  std::vector<double> history(order * order * kept, 0.0);
+  for (int p = 0; p < order * order; ++p) {
+    history[p * kept] = 0.012 + 0.006 * std::sin(1.7 * p);
+    history[p * kept + 1] = -0.002 + 0.004 * std::cos(2.3 * p);
+  }
+  contact::contact_face<Surface>(law, X, X, u, order, r, K, history.data());
+  const double h = 1e-6;
+  double worst_r = 0.0, largest_r = 0.0, worst_K = 0.0, largest_K = 0.0, asymmetry = 0.0;
+  for (int q = 0; q < dofs; ++q) {
+    double up[n][3], um[n][3], rp[dofs], rm[dofs];
+    std::copy(&u[0][0], &u[0][0] + dofs, &up[0][0]);
+    std::copy(&u[0][0], &u[0][0] + dofs, &um[0][0]);
+    up[q / 3][q % 3] += h;
+    um[q / 3][q % 3] -= h;
+    const auto plus = contact::contact_face<Surface>(law, X, X, up, order, rp, nullptr, history.data());
+    const auto minus = contact::contact_face<Surface>(law, X, X, um, order, rm, nullptr, history.data());
+    worst_r = std::max(worst_r, std::abs((plus.energy - minus.energy) / (2 * h) - r[q]));
+    largest_r = std::max(largest_r, std::abs(r[q]));
+    for (int p = 0; p < dofs; ++p) {
+      worst_K = std::max(worst_K, std::abs((rp[p] - rm[p]) / (2 * h) - K[p][q]));
+      largest_K = std::max(largest_K, std::abs(K[p][q]));
+      asymmetry = std::max(asymmetry, std::abs(K[p][q] - K[q][p]));
+    }
+  }
+  EXPECT_LT(worst_r / largest_r, 1e-6);
+  EXPECT_LT(worst_K / largest_K, 1e-5);
+  EXPECT_LT(asymmetry / largest_K, 1e-12);
+}
+
 // A flat face at the equilibrium gap slid uniformly along X by `slide` from the history `in`: its X force.
 double slid_face_force(const contact::AdhesiveFrictionIntegrand& law, double slide, const std::vector<double>& in,
                        std::vector<double>& out, double& dissipated)
@@ -139,6 +176,19 @@ TEST(FrictionFace, TangentsMatchFiniteDifferencesInStickAndSlip)
     expect_consistent<elements::Quad4Surface>(law);
     expect_consistent<elements::Quad9Surface>(law);
   }
+}
+
+TEST(FrictionFace, TheVariationalUpdateIsTheDerivativeOfItsEnergyWithASymmetricTangent)
+{
+  for (auto limit : {contact::AdhesiveFriction::Limit::extended_amontons,
+                     contact::AdhesiveFriction::Limit::constant_strength}) {
+    auto law = integrand(limit);
+    law.friction.variational = true;
+    EXPECT_TRUE(contact::symmetric_tangent(law));
+    expect_variational<elements::Quad4Surface>(law);
+    expect_variational<elements::Quad9Surface>(law);
+  }
+  EXPECT_FALSE(contact::symmetric_tangent(integrand(contact::AdhesiveFriction::Limit::extended_amontons)));
 }
 
 TEST(FrictionFace, ConstantStrengthSlidesAtTheStrengthTimesTheArea)
