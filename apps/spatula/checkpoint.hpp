@@ -10,10 +10,11 @@
 // checked on restart. A run whose stiction anchors were set at its restart state ('Adhesion/stiction anchors' =
 // 'restart state') also stores that state's displacements (/anchors), so that a resumed run measures the travel
 // from the same anchors. A contact law with state (adhesive friction) stores its points' committed histories
-// (/contact history, face after face in the node space's order), which a restart requires. A last state taken inside a jump past an instability (a periodic checkpoint during its
-// energy descent, a signal, or the descent's iteration limit) also stores the descent's state (/jump displacements,
-// /jump masters) and where it stands (/jump: master, value, shift, scale, iterations): a run resumed from it goes on
-// with the descent instead of starting the jump again.
+// (/contact history, face after face in the node space's order), which a restart requires (unless its anchors are
+// set at the restart state, where it then starts unstrained). A last state taken inside a jump past an instability
+// (a periodic checkpoint during its energy descent, a signal, or the descent's iteration limit) also stores the
+// descent's state (/jump displacements, /jump masters) and where it stands (/jump: master, value, shift, scale,
+// iterations): a run resumed from it goes on with the descent instead of starting the jump again.
 #include "analysis/load_stepping.hpp"
 #include "scene.hpp"
 

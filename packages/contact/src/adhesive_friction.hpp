@@ -37,6 +37,7 @@ struct FrictionResponse {
   double d_gap[2] = {0.0, 0.0};                          // d t_i / d g
   bool sliding = false;
   double limit = 0.0;                // tau(g)
+  double limit_slope = 0.0, limit_curvature = 0.0;   // tau'(g), tau''(g)
   FrictionHistory trial;             // the history after this state (commit it at a converged state)
 };
 
@@ -90,11 +91,6 @@ struct AdhesiveFriction {
     dtau = coefficient * (slope * c + part * dc);
     d2tau = coefficient * (curvature * c + 2.0 * slope * dc + part * d2c);
   }
-  KOKKOS_INLINE_FUNCTION void sliding_limit(double g, double& tau, double& dtau) const
-  {
-    double d2tau;
-    sliding_limit(g, tau, dtau, d2tau);
-  }
 
   // The response at gap g and tangential position s from the history `in`.
   KOKKOS_INLINE_FUNCTION FrictionResponse evaluate(double g, const double s[2], const FrictionHistory& in) const
@@ -102,8 +98,9 @@ struct AdhesiveFriction {
     FrictionResponse out;
     out.trial = in;
     double tau, dtau;
-    sliding_limit(g, tau, dtau);
+    sliding_limit(g, tau, dtau, out.limit_curvature);
     out.limit = tau;
+    out.limit_slope = dtau;
     const double trial[2] = {stiffness * (s[0] - in.anchor[0]), stiffness * (s[1] - in.anchor[1])};
     const double size = ::sqrt(trial[0] * trial[0] + trial[1] * trial[1]);
     if (size <= tau) {   // stick

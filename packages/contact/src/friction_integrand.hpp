@@ -72,13 +72,11 @@ struct AdhesiveFrictionIntegrand {
         H[i][2] += response.d_gap[i];
       }
     if (friction.variational && response.sliding) {   // d psi / d g = tau' (|s - a| - tau / eps_T)
-      double limit, slope, curvature;
-      friction.sliding_limit(g, limit, slope, curvature);
-      const double slip = travel - tau / stiffness;
+      const double slope = response.limit_slope, slip = travel - tau / stiffness;
       gradient[2] += slope * slip;
       if (H) {
         for (int i = 0; i < 2; ++i) H[2][i] += response.d_gap[i];
-        H[2][2] += curvature * slip - slope * slope / stiffness;
+        H[2][2] += response.limit_curvature * slip - slope * slope / stiffness;
       }
     }
     return normal_active || tau > 0.0 || response.traction[0] != 0.0 || response.traction[1] != 0.0;

@@ -37,23 +37,23 @@ AdhesiveFriction constant()
 TEST(AdhesiveFriction, SlidingLimitsAreTheModelsOnes)
 {
   const auto f = amontons();
-  double tau, dtau;
-  f.sliding_limit(f.law.strongest_attraction_gap(), tau, dtau);
+  double tau, dtau, d2tau;
+  f.sliding_limit(f.law.strongest_attraction_gap(), tau, dtau, d2tau);
   EXPECT_NEAR(tau, 0.0, 1e-12);   // at the strongest attraction no friction is left
-  f.sliding_limit(f.law.equilibrium_gap(), tau, dtau);
+  f.sliding_limit(f.law.equilibrium_gap(), tau, dtau, d2tau);
   EXPECT_NEAR(tau, 0.3 * f.law.max_traction(), 1e-12);   // T_n = 0: mu t_max, friction without pressure
   const double compressed = 0.9 * f.law.equilibrium_gap();
   double phi, dphi, d2phi;
   f.law.evaluate(compressed, phi, dphi, d2phi);
-  f.sliding_limit(compressed, tau, dtau);
+  f.sliding_limit(compressed, tau, dtau, d2tau);
   EXPECT_NEAR(tau, 0.3 * (-dphi + f.law.max_traction()), 1e-12);
   EXPECT_GT(tau, 0.3 * f.law.max_traction());
-  f.sliding_limit(1.25 * f.cutoff, tau, dtau);   // beyond the cut-off: none
+  f.sliding_limit(1.25 * f.cutoff, tau, dtau, d2tau);   // beyond the cut-off: none
   EXPECT_EQ(tau, 0.0);
   const auto c = constant();
-  c.sliding_limit(0.5, tau, dtau);
+  c.sliding_limit(0.5, tau, dtau, d2tau);
   EXPECT_DOUBLE_EQ(tau, 0.05);
-  c.sliding_limit(1.1, tau, dtau);
+  c.sliding_limit(1.1, tau, dtau, d2tau);
   EXPECT_GT(tau, 0.0);
   EXPECT_LT(tau, 0.05);
 }
@@ -65,8 +65,8 @@ TEST(AdhesiveFriction, StickThenSlipOnTheLimitWithItsDissipation)
 {
   for (const auto& f : {amontons(), constant()}) {
     for (double g : {0.25, 0.3, 0.35, 0.4, 0.6, 0.9, 1.1, 1.3}) {
-      double tau, dtau;
-      f.sliding_limit(g, tau, dtau);
+      double tau, dtau, d2tau;
+      f.sliding_limit(g, tau, dtau, d2tau);
       const double onset = tau / f.stiffness;   // the travel at which slip begins
       const double direction[2] = {0.6, -0.8};
       FrictionHistory start;
@@ -104,8 +104,8 @@ TEST(AdhesiveFriction, ConsistentTangentMatchesFiniteDifferences)
     history.anchor[0] = 0.01;
     history.anchor[1] = -0.02;
     for (double g : {0.3, 0.35, 0.6, 1.1}) {
-      double tau, dtau;
-      f.sliding_limit(g, tau, dtau);
+      double tau, dtau, d2tau;
+      f.sliding_limit(g, tau, dtau, d2tau);
       for (double scale : {0.3, 3.0}) {   // stick, slip
         const double onset = tau / f.stiffness;
         const double s[2] = {history.anchor[0] + scale * onset * 0.8, history.anchor[1] + scale * onset * 0.6};
@@ -135,8 +135,8 @@ TEST(AdhesiveFriction, NewtonInSlipConvergesQuadratically)
 {
   const auto f = amontons();
   const double g = 0.35, k = 5.0;
-  double tau, dtau;
-  f.sliding_limit(g, tau, dtau);
+  double tau, dtau, d2tau;
+  f.sliding_limit(g, tau, dtau, d2tau);
   const double driver[2] = {3.0 * tau / k + 0.2, 0.1};   // far enough that the point slides
   FrictionHistory history;   // an anchor off the driver's line: the sliding direction turns as s moves
   history.anchor[0] = -0.5 * tau / f.stiffness;

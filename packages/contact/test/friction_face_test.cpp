@@ -46,62 +46,32 @@ void face_state(double X[Surface::nodes][3], double u[Surface::nodes][3])
   }
 }
 
-// The tangent against central differences of the residual at the same history in: some points stick, some slide.
+// The face of face_state() from a history that leaves some points sticking and some sliding, against central
+// differences (step h) at the same history in: the residual against the energy, the tangent against the residual,
+// each relative to its largest entry, and the tangent's largest asymmetry relative to its largest entry.
+struct FaceCheck {
+  double residual = 0.0, tangent = 0.0, asymmetry = 0.0;
+  int sliding = 0, sticking = 0;
+};
+
 template <class Surface>
-void expect_consistent(const contact::AdhesiveFrictionIntegrand& law)
+FaceCheck check_face(const contact::AdhesiveFrictionIntegrand& law, double h)
 {
   constexpr int n = Surface::nodes, dofs = 3 * n, order = 4, kept = contact::AdhesiveFrictionIntegrand::history_size;
   double X[n][3], u[n][3], r[dofs], K[dofs][dofs];
   face_state<Surface>(X, u);
-  std::vector<double> history(order * order * kept), trial(order * order * kept);
+  std::vector<double> history(order * order * kept, 0.0), trial(order * order * kept);
   for (int p = 0; p < order * order; ++p) {   // anchors scattered around the travel: some points beyond the limit
     history[p * kept] = 0.012 + 0.006 * std::sin(1.7 * p);
     history[p * kept + 1] = -0.002 + 0.004 * std::cos(2.3 * p);
   }
   contact::contact_face<Surface>(law, X, X, u, order, r, K, history.data(), trial.data());
-  int sliding = 0, sticking = 0;
+  FaceCheck check;
   for (int p = 0; p < order * order; ++p) {
     const bool moved = trial[p * kept] != history[p * kept] || trial[p * kept + 1] != history[p * kept + 1];
-    (moved ? sliding : sticking) += 1;
+    (moved ? check.sliding : check.sticking) += 1;
   }
-  EXPECT_GT(sliding, 0);
-  EXPECT_GT(sticking, 0);
-  const double h = 1e-7;
-  double worst = 0.0, largest = 0.0, asymmetry = 0.0;
-  for (int q = 0; q < dofs; ++q) {
-    double up[n][3], um[n][3], rp[dofs], rm[dofs];
-    std::copy(&u[0][0], &u[0][0] + dofs, &up[0][0]);
-    std::copy(&u[0][0], &u[0][0] + dofs, &um[0][0]);
-    up[q / 3][q % 3] += h;
-    um[q / 3][q % 3] -= h;
-    contact::contact_face<Surface>(law, X, X, up, order, rp, nullptr, history.data());
-    contact::contact_face<Surface>(law, X, X, um, order, rm, nullptr, history.data());
-    for (int p = 0; p < dofs; ++p) {
-      worst = std::max(worst, std::abs((rp[p] - rm[p]) / (2 * h) - K[p][q]));
-      largest = std::max(largest, std::abs(K[p][q]));
-      asymmetry = std::max(asymmetry, std::abs(K[p][q] - K[q][p]));
-    }
-  }
-  EXPECT_LT(worst / largest, 1e-6);
-  EXPECT_GT(asymmetry / largest, 1e-4);   // slip couples the tangential traction to the gap, not the reverse
-}
-
-// The variational update: the residual is the derivative of the energy and the tangent that of the residual, and
-// it is symmetric, with points sticking and sliding.
-template <class Surface>
-void expect_variational(const contact::AdhesiveFrictionIntegrand& law)
-{
-  constexpr int n = Surface::nodes, dofs = 3 * n, order = 4, kept = contact::AdhesiveFrictionIntegrand::history_size;
-  double X[n][3], u[n][3], r[dofs], K[dofs][dofs];
-  face_state<Surface>(X, u);
-  std::vector<double> history(order * order * kept, 0.0);
-  for (int p = 0; p < order * order; ++p) {
-    history[p * kept] = 0.012 + 0.006 * std::sin(1.7 * p);
-    history[p * kept + 1] = -0.002 + 0.004 * std::cos(2.3 * p);
-  }
-  contact::contact_face<Surface>(law, X, X, u, order, r, K, history.data());
-  const double h = 1e-6;
-  double worst_r = 0.0, largest_r = 0.0, worst_K = 0.0, largest_K = 0.0, asymmetry = 0.0;
+  double largest_r = 0.0, largest_K = 0.0;
   for (int q = 0; q < dofs; ++q) {
     double up[n][3], um[n][3], rp[dofs], rm[dofs];
     std::copy(&u[0][0], &u[0][0] + dofs, &up[0][0]);
@@ -110,17 +80,42 @@ void expect_variational(const contact::AdhesiveFrictionIntegrand& law)
     um[q / 3][q % 3] -= h;
     const auto plus = contact::contact_face<Surface>(law, X, X, up, order, rp, nullptr, history.data());
     const auto minus = contact::contact_face<Surface>(law, X, X, um, order, rm, nullptr, history.data());
-    worst_r = std::max(worst_r, std::abs((plus.energy - minus.energy) / (2 * h) - r[q]));
+    check.residual = std::max(check.residual, std::abs((plus.energy - minus.energy) / (2 * h) - r[q]));
     largest_r = std::max(largest_r, std::abs(r[q]));
     for (int p = 0; p < dofs; ++p) {
-      worst_K = std::max(worst_K, std::abs((rp[p] - rm[p]) / (2 * h) - K[p][q]));
+      check.tangent = std::max(check.tangent, std::abs((rp[p] - rm[p]) / (2 * h) - K[p][q]));
       largest_K = std::max(largest_K, std::abs(K[p][q]));
-      asymmetry = std::max(asymmetry, std::abs(K[p][q] - K[q][p]));
+      check.asymmetry = std::max(check.asymmetry, std::abs(K[p][q] - K[q][p]));
     }
   }
-  EXPECT_LT(worst_r / largest_r, 1e-6);
-  EXPECT_LT(worst_K / largest_K, 1e-5);
-  EXPECT_LT(asymmetry / largest_K, 1e-12);
+  check.residual /= largest_r;
+  check.tangent /= largest_K;
+  check.asymmetry /= largest_K;
+  return check;
+}
+
+// The return mapping: the tangent is the derivative of the residual, and not symmetric.
+template <class Surface>
+void expect_consistent(const contact::AdhesiveFrictionIntegrand& law)
+{
+  const auto check = check_face<Surface>(law, 1e-7);
+  EXPECT_GT(check.sliding, 0);
+  EXPECT_GT(check.sticking, 0);
+  EXPECT_LT(check.tangent, 1e-6);
+  EXPECT_GT(check.asymmetry, 1e-4);   // slip couples the tangential traction to the gap, not the reverse
+}
+
+// The variational update: the residual is the derivative of the energy and the tangent that of the residual, and
+// it is symmetric, with points sticking and sliding.
+template <class Surface>
+void expect_variational(const contact::AdhesiveFrictionIntegrand& law)
+{
+  const auto check = check_face<Surface>(law, 1e-6);
+  EXPECT_GT(check.sliding, 0);
+  EXPECT_GT(check.sticking, 0);
+  EXPECT_LT(check.residual, 1e-6);
+  EXPECT_LT(check.tangent, 1e-5);
+  EXPECT_LT(check.asymmetry, 1e-12);
 }
 
 // A flat face at the equilibrium gap slid uniformly along X by `slide` from the history `in`: its X force.
