@@ -4,7 +4,9 @@
     scripts/run-study.py <study> [--jobs 2] [--work DIR] [--mesh LEVEL] [--docs] [--set [SCENE:]LIST/NAME=VALUE ...]
 
 studies: table4 (peel by rotation), table6 (pull-off at 45/60/75/90 deg, also Table 5), stiction, gamma-W (Table 7),
-gamma-L (Table 8), rough (Fig. 14), all. Runs use one MPI rank each, `--jobs` of them at once (both cores by default); pull-offs
+gamma-L (Table 8), rough (Fig. 14), all (these: the paper's); shear (beyond the paper: pulls at angles with friction,
+on the coarse mesh unless --mesh says otherwise; with --docs it writes docs/shear.md). Runs use one MPI rank each,
+`--jobs` of them at once (both cores by default); pull-offs
 start as soon as the rotation run they start from has written their checkpoint (a copy of it, <scene>.restart.h5, is
 what they read). Progress: one line per converged step of every run (stage, theta_y or u_z, elapsed, an estimate of
 what remains).
@@ -54,6 +56,7 @@ from study.runner import APP, run_all  # noqa: E402
 from study.runs import complete  # noqa: E402
 from study.scenes import DEPENDS, OVERRIDES, STUDIES, parse_override, planned_runs  # noqa: E402
 from study.glance import glance  # noqa: E402
+from study import shear_tables  # noqa: E402
 from study.tables import error_bars, write_tables  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -116,6 +119,8 @@ def main():
     print(f'study {arguments.study}: {len(runs) - len(failed)} of {len(runs)} runs complete in '
           f'{time.time() - started:.0f} s' + (f'; failed: {", ".join(" ".join(f) for f in failed)}' if failed else ''),
           flush=True)
+    if arguments.study == 'shear':
+        return shear_report(arguments.work, arguments.docs) or (1 if failed else 0)
     results, texts = {}, []
     for level in LEVELS:
         directory = os.path.join(arguments.work, level)
@@ -139,6 +144,26 @@ def main():
                 '{{FIGURES}}', '\n\n'.join(f'{caption}:\n\n![{caption}]({name})' for name, caption in pictures)))
         print('wrote docs/validation.md')
     return 1 if failed else 0
+
+
+def shear_report(work, docs):
+    """The shear study's tables (and with docs, docs/shear.md and its figures) at every level run."""
+    texts, pictures = [], []
+    for level in LEVELS:
+        directory = os.path.join(work, level)
+        if os.path.isdir(directory):
+            text, found = shear_tables.lines(directory, level)
+            texts.append(text)
+            if docs:
+                pictures += shear_tables.figure(found, level, os.path.join(ROOT, 'docs'))
+    text = '\n'.join(texts)
+    print(text)
+    if docs:
+        template = open(os.path.join(ROOT, 'docs', 'shear-notes.md')).read()
+        with open(os.path.join(ROOT, 'docs', 'shear.md'), 'w') as out:
+            out.write(template.replace('{{TABLES}}', text).replace(
+                '{{FIGURES}}', '\n\n'.join(f'{caption}:\n\n![{caption}]({name})' for name, caption in pictures)))
+        print('wrote docs/shear.md')
 
 
 if __name__ == '__main__':

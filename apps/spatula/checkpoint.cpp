@@ -295,7 +295,7 @@ void check_checkpoint(const Scene& scene, const discretization::NodeSpace& nodes
   // A contact law with state goes on from the points' histories stored with the state, unless its anchors are set
   // at the restart state (then it starts there relaxed, as from the undeformed state).
   if (scene.adhesion.enabled && !starts_relaxed(scene)) {
-    const auto contact = contact::make_contact_model(scene.adhesion.settings);
+    const auto& contact = scene.adhesion.model;
     const std::size_t order = contact->quadrature_order();
     const std::size_t expected = nodes.faces.size() * order * order * contact->history_size();
     if (expected > 0 && (!in->exists(group + "/contact history") ||

@@ -171,7 +171,7 @@ std::unique_ptr<spatula::io::XdmfOutput> open_fields(const spatula::io::OutputDi
     try {
       return std::make_unique<XdmfOutput>(directory.file(""), "mesh", run.mesh,
                                           spatula::app::read_run_record(scene).field_states,
-                                          std::vector<std::string>{"I1"}, std::vector<std::string>{"displacement"});
+                                          spatula::app::cell_field_names(scene), std::vector<std::string>{"displacement"});
     } catch (const std::exception& error) {
       out << "spatula: the stopped run's field states cannot be kept (" << error.what()
           << "): the fields start again at the resumed state\n";

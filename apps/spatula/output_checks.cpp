@@ -102,7 +102,7 @@ OutputEstimate estimate_output(const Scene& scene, const mesh::HexMesh& mesh)
   // the file twice while it is replaced.
   double history_bytes = 0.0;
   if (scene.adhesion.enabled) {
-    const auto contact = contact::make_contact_model(scene.adhesion.settings);
+    const auto& contact = scene.adhesion.model;
     const double order = contact->quadrature_order(), surface_nodes = mesh.nodes(mesh::Boundary::contact).size();
     history_bytes = surface_nodes * order * order * contact->history_size() * 8;
   }

@@ -99,7 +99,7 @@ Scene read_scene(Teuchos::ParameterList user)
                                    "tangential adhesion nothing holds the spatula in X and the system is singular");
   }
   // A law whose tangent is not symmetric (adhesive friction) has its Newton tangents factored LU.
-  if (scene.adhesion.enabled && !contact::make_contact_model(scene.adhesion.settings)->symmetric())
+  if (scene.adhesion.enabled && !scene.adhesion.model->symmetric())
     scene.linear_solver.mumps.symmetric = false;
   if (scene.adhesion.settings.anchor_at_restart) {
     if (scene.loading.restart_file.empty())

@@ -28,7 +28,7 @@ discretization::SystemOptions system_options(const Scene& scene)
 {
   discretization::SystemOptions options;
   options.enrichment = enrichment_of(scene);
-  if (scene.adhesion.enabled) options.contact = contact::make_contact_model(scene.adhesion.settings);
+  options.contact = scene.adhesion.model;
   return options;
 }
 
@@ -97,7 +97,9 @@ void Run::write_fields(const Vector& x, double time)
   state.displacement = discretization::node_displacements(*system_, x);
   auto trace = discretization::element_cauchy_trace(*system_, x);
   for (auto& value : trace) value /= young_;
-  state.cell_scalars["I1"] = std::move(trace);   // the paper's colour scale: tr(sigma) / E
+  state.cell_scalars[stress_field] = std::move(trace);   // the paper's colour scale: tr(sigma) / E
+  auto dissipation = discretization::element_contact_dissipation(*system_);
+  if (!dissipation.empty()) state.cell_scalars[friction_field] = std::move(dissipation);
   if (fields_) fields_->add_state(state);
 }
 
@@ -375,6 +377,12 @@ std::optional<Stop> Run::finish(std::optional<analysis::Failure> failure, int in
   write_last_state(path_.state(), last);   // collective
   stop.checkpointed = true;
   return stop;
+}
+
+std::vector<std::string> cell_field_names(const Scene& scene)
+{
+  if (scene.adhesion.model && scene.adhesion.model->dissipated_index() >= 0) return {stress_field, friction_field};
+  return {stress_field};
 }
 
 const char* motion_name(discretization::Master motion)

@@ -10,6 +10,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace spatula::app {
 
@@ -23,6 +24,12 @@ struct Stop {
   discretization::Master moved = discretization::Master::rotation;   // what that stage moves (the load's unit)
   bool force = false;                // that stage moves the force on it [nN], not the motion
 };
+
+// The cell fields of each field state: tr(sigma) / E, and with a contact law that dissipates (adhesive friction) the
+// energy it has dissipated per unit area on the elements of the contact faces [J/m^2]: where the pad has slid.
+inline const char* stress_field = "I1";
+inline const char* friction_field = "dissipated_by_friction";
+std::vector<std::string> cell_field_names(const Scene& scene);
 
 // "rotation", "lift", "slide": a motion of the end face in messages.
 const char* motion_name(discretization::Master motion);

@@ -8,6 +8,7 @@ import sys
 from xml.etree import ElementTree
 
 from convergence import LEVELS
+from study import shear_scenes
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SCENES = os.path.join(ROOT, 'xml', 'studies')
@@ -20,11 +21,15 @@ STUDIES = {
     'gamma-L': ['peel-rotation', 'pull-off-60', 'gamma-L-0.444', 'gamma-L-0.667', 'gamma-L-1.5'],
     'rough': ['rough-z0-0', 'rough-z0-4', 'rough-z0-8'],
 }
+# 'all': the paper's studies.
 STUDIES['all'] = sorted({scene for scenes in STUDIES.values() for scene in scenes},
                         key=lambda s: (not s.startswith('peel'), s))
+# Beyond the paper: the spatula pulled at angles with friction (docs/shear.md).
+STUDIES['shear'] = shear_scenes.scenes()
 DEPENDS = {f'pull-off-{t}': 'peel-rotation' for t in (45, 60, 75, 90, '60-stiction', '60-stiction-x-held')}
+DEPENDS.update({scene: 'peel-rotation' for scene in STUDIES['shear'] if scene.startswith('shear-')})
 # The mesh level each study runs on by default (None: the level written in the scene file).
-STUDY_LEVEL = {'gamma-W': 'coarse', 'gamma-L': 'coarse'}
+STUDY_LEVEL = {'gamma-W': 'coarse', 'gamma-L': 'coarse', 'shear': 'coarse'}
 
 
 # Parameters set on the command line (--set), applied to every scene file a run reads: (scene or None for every
@@ -84,7 +89,11 @@ def scene_text(scene):
 
 @functools.lru_cache(maxsize=None)
 def overridden_scene_text(scene, overrides):
-    return apply_overrides(open(os.path.join(SCENES, scene + '.xml')).read(), scene, overrides)
+    """xml/studies/<scene>.xml, or for a scene derived from another (the shear study's grid) its base scene with the
+    derived settings, then the overrides."""
+    base, settings = shear_scenes.derived(scene) or (scene, [])
+    text = apply_overrides(open(os.path.join(SCENES, base + '.xml')).read(), scene, settings)
+    return apply_overrides(text, scene, overrides)
 
 
 def scene_parameter(scene, name):

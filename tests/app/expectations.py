@@ -1,5 +1,6 @@
 """Counted checks for the script tests: check() prints each failed expectation, finish() reports and exits with 1 if
-any failed."""
+any failed; xml_parameter() reads a parameter of a scene's text."""
+import re
 import sys
 
 failures = []
@@ -17,3 +18,9 @@ def finish(success):
     sys.exit(1 if failures else 0)
 
 
+
+
+def xml_parameter(text, name):
+    """(type, value) of the parameter `name` in a scene's XML text (the first with that name), or None."""
+    match = re.search(rf'<Parameter name="{name}" type="(\w+)" value="([^"]*)"', text)
+    return match.groups() if match else None

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The adhesive friction law in the app, on the coarse adhesive rotation: with the friction coefficient 0 it follows
 # the frictionless law (M_y and Pi_sa to 1e-6 at Newton's tolerance 1e-9); with mu = 0.3 the pad's sliding shows
-# (another moment, energy dissipated by sliding, the energy balance held); and a friction run stopped by SIGTERM and
+# (another moment, energy dissipated by sliding, the energy balance held, a field of it where the pad slid whose
+# integral is the curve's dissipation); and a friction run stopped by SIGTERM and
 # restarted from its last state (the contact points' histories stored with it) starts from the stopped state exactly
 # and ends where the uninterrupted run ends (to 1e-4: with friction the state depends a little on the steps). A
 # frictionless checkpoint cannot restart a friction scene (no history): an input error naming the key; with
@@ -21,7 +22,7 @@ friction() {   # <directory> <final theta_y> <coefficient> [extra Loading parame
 }
 rotation_scene frictionless 10 | tight_newton > frictionless.xml
 friction none 10 0 > none.xml
-friction sliding 10 0.3 > sliding.xml
+friction sliding 10 0.3 | sed 's#name="write mesh" type="bool" value="false"#name="write mesh" type="bool" value="true"#' > sliding.xml
 for name in frictionless none sliding; do
   "$app" $name.xml > $name.log 2>&1 || { fail "the $name rotation"; tail -5 $name.log; }
 done
@@ -50,6 +51,30 @@ print(f"mu = 0 follows the frictionless rotation over {len(rows['none'])} states
       f"{moment_free:.4f} nN nm at 10 deg, dissipated {dissipated:.3e} Pi_c0")
 PY
 passed "friction coefficient 0 and 0.3"
+
+# Where the pad slid: the field states carry the energy dissipated per unit area on the contact faces' elements
+# (zero elsewhere, never negative), whose integral over the contact surface is the curve's dissipation (no jumps
+# here: all of it sliding) at the last state.
+/usr/bin/python3 - <<'PY' || fail "the dissipation field"
+import csv
+import h5py
+import numpy
+with h5py.File('sliding/mesh.h5', 'r') as f:
+    X, quads, hexes = f['mesh/coordinates'][:], f['mesh/contact_quadrilaterals'][:], f['mesh/hexahedra'][:]
+    last = sorted(f['states'].keys())[-1]
+    field = f[f'states/{last}/dissipated_by_friction'][:]
+elements = [next(e for e, h in enumerate(hexes) if set(q) <= set(h)) for q in quads]
+area = [0.5 * numpy.linalg.norm(numpy.cross(X[q[2]] - X[q[0]], X[q[3]] - X[q[1]])) for q in quads]
+others = numpy.delete(field, elements)
+assert field.min() >= 0 and not others.any(), (field.min(), abs(others).max())
+row = list(csv.DictReader(open('sliding/curve.csv')))[-1]
+pi_c0 = float(row['Pi_ext_1e-18J']) / float(row['Pi_ext_per_Pi_c0'])
+integral = 2 * sum(field[e] * a for e, a in zip(elements, area))   # the half model's faces, the full spatula's curve
+curve = float(row['dissipated_per_Pi_c0']) * pi_c0
+assert row['after_jump'] == '0' and abs(integral / curve - 1) < 1e-6, (integral, curve)
+print(f'dissipation field: {integral:.6f} nN nm over {numpy.count_nonzero(field)} elements, curve {curve:.6f}')
+PY
+passed "the dissipation field"
 
 # The variational update: the same rotation with a symmetric tangent (LDL^T: the negative pivots are counted), within
 # 1 % of the return mapping's moment (the two differ by tau'(g) times each step's slip in the normal traction).

@@ -6,21 +6,14 @@ scenes alone, and a malformed entry is refused; the scenes it writes pass the ap
     study_overrides.py <spatula app>"""
 import argparse
 import os
-import re
 import subprocess
 import sys
 import tempfile
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
 sys.path.insert(0, os.path.join(ROOT, 'scripts'))
-from expectations import check, finish  # noqa: E402
+from expectations import check, finish, xml_parameter as parameter  # noqa: E402
 from study import scenes as study  # noqa: E402
-
-
-def parameter(text, name):
-    """(type, value) of the parameter `name` (the first with that name), or None."""
-    match = re.search(rf'<Parameter name="{name}" type="(\w+)" value="([^"]*)"', text)
-    return match.groups() if match else None
 
 
 # A scene read before the overrides were known (as when the command line checks the --set scene names) must not keep

@@ -107,7 +107,7 @@ AdhesionParameters AdhesionParameters::from(const Teuchos::ParameterList& adhesi
   s.rough.spacing = rough.get<double>("lambda");
   s.rough.base = -r_eq - s.rough.z0;   // asperity tops at the pad's equilibrium gap
   s.conform = rough.get<bool>("conform initially");
-  if (p.enabled) make_contact_model(s);   // checks the law/substrate combination now, before anything runs
+  if (p.enabled) p.model = make_contact_model(s);   // checks the law/substrate combination now, before anything runs
   return p;
 }
 

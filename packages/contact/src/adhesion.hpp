@@ -41,6 +41,7 @@ struct AdhesionSettings {
 struct AdhesionParameters {
   bool enabled = false;
   AdhesionSettings settings;
+  std::shared_ptr<const discretization::ContactModel> model;   // the law the settings select (null: none)
 
   static void declare(Teuchos::ParameterList& adhesion);
   // Reads a validated sublist; E [GPa] is needed for the normalized form.

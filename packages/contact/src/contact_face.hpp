@@ -102,6 +102,16 @@ template <class Integrand>
 struct HistorySize<Integrand, std::void_t<decltype(Integrand::history_size)>> {
   static constexpr int value = Integrand::history_size;
 };
+// Where an integrand with a history keeps the energy dissipated at a point [nN/nm]: its `dissipated_index`, -1 where
+// it declares none.
+template <class Integrand, class = void>
+struct DissipatedIndex {
+  static constexpr int value = -1;
+};
+template <class Integrand>
+struct DissipatedIndex<Integrand, std::void_t<decltype(Integrand::dissipated_index)>> {
+  static constexpr int value = Integrand::dissipated_index;
+};
 // Whether an integrand's Hessian is symmetric: its symmetric_tangent(), true where it declares none.
 template <class Integrand, class = void>
 struct DeclaresSymmetry : std::false_type {};

@@ -159,6 +159,7 @@ public:
   double work_of_adhesion() const override { return work_; }
   int quadrature_order() const override { return order_; }
   int history_size() const override { return HistorySize<Integrand>::value; }
+  int dissipated_index() const override { return DissipatedIndex<Integrand>::value; }
   bool symmetric() const override { return symmetric_tangent(integrand_); }
 
   ContactTotals assemble(const ContactFaceViews& faces, const ElementScatter& scatter) const override

@@ -26,8 +26,9 @@ struct AdhesiveFrictionIntegrand {
   FrictionlessIntegrand<FlatSubstrate> normal;
   AdhesiveFriction friction;
   static constexpr int history_size = 3;   // sliding anchor (X, Y) relative to A [nm], dissipated [nN/nm]
+  static constexpr int dissipated_index = 2;
   KOKKOS_INLINE_FUNCTION bool symmetric_tangent() const { return friction.variational; }
-  KOKKOS_INLINE_FUNCTION static double dissipated(const double* history) { return history[2]; }
+  KOKKOS_INLINE_FUNCTION static double dissipated(const double* history) { return history[dissipated_index]; }
 
   KOKKOS_INLINE_FUNCTION double far_bound(const double x[3]) const { return normal.far_bound(x); }
   // Beyond both the normal law's cut-off and the friction's (where the sliding limit is zero).

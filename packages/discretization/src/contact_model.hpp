@@ -62,6 +62,8 @@ public:
   // A law with state (adhesive friction): the history values per quadrature point, committed by the caller at
   // converged states (DiscreteSystem::commit_contact_history); 0: none.
   virtual int history_size() const { return 0; }
+  // Where such a history keeps the energy dissipated at the point [nN/nm]; -1: it keeps none.
+  virtual int dissipated_index() const { return -1; }
   // false: the tangent is not symmetric (a sliding limit that depends on the gap); the linear solver factors LU.
   virtual bool symmetric() const { return true; }
   virtual ContactTotals assemble(const ContactFaceViews& faces, const ElementScatter& scatter) const = 0;

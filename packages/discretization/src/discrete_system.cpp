@@ -392,5 +392,6 @@ Evaluation DiscreteSystem::evaluate(const Vector& x, Vector* residual, bool with
 const SystemTopology& DiscreteSystem::topology() const { return *implementation_; }
 const SolidParameters& DiscreteSystem::solid() const { return implementation_->solid; }
 const SolidModel& DiscreteSystem::solid_model() const { return *implementation_->solid_model; }
+const ContactModel* DiscreteSystem::contact_model() const { return implementation_->options.contact.get(); }
 
 }  // namespace spatula::discretization

@@ -117,6 +117,7 @@ public:
   const SystemTopology& topology() const;
   const SolidParameters& solid() const;
   const SolidModel& solid_model() const;   // the law 'Material/law' names
+  const ContactModel* contact_model() const;   // the adhesion law (nullptr: no contact)
 
 private:
   struct Implementation;

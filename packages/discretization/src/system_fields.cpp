@@ -1,11 +1,13 @@
 #include "discretization/system_fields.hpp"
 
 #include "discretization/system_topology.hpp"
+#include "elements/quadrilateral_shape.hpp"
 #include "elements/solid_element.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -111,6 +113,53 @@ std::vector<double> element_cauchy_trace(const DiscreteSystem& system, const Vec
   for (auto k : topology.hex13) local[topology.space.hex13_elements[k]] = trace(topology.space.hex13_nodes[k], 13);
   Teuchos::reduceAll(*topology.comm, Teuchos::REDUCE_SUM, static_cast<int>(local.size()), local.data(), global.data());
   return global;
+}
+
+namespace {
+
+// The mean over a contact face of a value given at its quadrature points (the contact kernel's: point (a, b) at
+// a order + b), weighted by the undeformed area each point stands for, as the kernel integrates.
+template <class Surface>
+double face_mean(const NodeSpace& space, std::size_t face, int order, const double* values, int stride)
+{
+  double area = 0.0, sum = 0.0;
+  for (int a = 0; a < order; ++a)
+    for (int b = 0; b < order; ++b) {
+      double s, t, ws, wt, shape[Surface::nodes], derivatives[Surface::nodes][2];
+      elements::gauss_point(order, a, s, ws);
+      elements::gauss_point(order, b, t, wt);
+      Surface::evaluate(s, t, shape, derivatives);
+      double Xs[3] = {0, 0, 0}, Xt[3] = {0, 0, 0};
+      for (int k = 0; k < Surface::nodes; ++k)
+        for (int i = 0; i < 3; ++i) {
+          Xs[i] += derivatives[k][0] * space.coordinates[space.faces[face][k]][i];
+          Xt[i] += derivatives[k][1] * space.coordinates[space.faces[face][k]][i];
+        }
+      const double dA = std::hypot(Xs[1] * Xt[2] - Xs[2] * Xt[1], Xs[2] * Xt[0] - Xs[0] * Xt[2],
+                                   Xs[0] * Xt[1] - Xs[1] * Xt[0]) * ws * wt;
+      area += dA;
+      sum += dA * values[(a * order + b) * stride];
+    }
+  return sum / area;
+}
+
+}  // namespace
+
+std::vector<double> element_contact_dissipation(const DiscreteSystem& system)
+{
+  const auto* law = system.contact_model();
+  if (!law || law->dissipated_index() < 0) return {};
+  const auto history = system.contact_history();
+  const auto& space = system.nodes();
+  const int order = law->quadrature_order(), size = law->history_size();
+  std::vector<double> field(system.topology().mesh.element_count(), 0.0);
+  for (std::size_t f = 0; f < space.faces.size(); ++f) {
+    const double* values = history.data() + f * order * order * size + law->dissipated_index();
+    field[space.face_elements[f]] = space.face_nodes == 9
+                                        ? face_mean<elements::Quad9Surface>(space, f, order, values, size)
+                                        : face_mean<elements::Quad4Surface>(space, f, order, values, size);
+  }
+  return field;
 }
 
 }  // namespace spatula::discretization

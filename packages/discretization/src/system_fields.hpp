@@ -23,4 +23,9 @@ void set_space_displacements(const DiscreteSystem& system, Vector& x, const std:
 // The element field tr(sigma) [GPa] (mean over the element's Gauss points), complete on every rank. Collective.
 std::vector<double> element_cauchy_trace(const DiscreteSystem& system, const Vector& x);
 
+// The energy a contact law with state (adhesive friction) has dissipated per unit undeformed area up to the committed
+// state [nN/nm = J/m^2], each contact face's mean over its undeformed area, on the element the face belongs to
+// (zero on the others): where the pad has slid. Empty for a law that records none. Collective.
+std::vector<double> element_contact_dissipation(const DiscreteSystem& system);
+
 }  // namespace spatula::discretization
