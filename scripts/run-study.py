@@ -147,12 +147,14 @@ def main():
 
 
 def shear_report(work, docs):
-    """The shear study's tables (and with docs, docs/shear.md and its figures) at every level run."""
+    """The shear study's tables (and with docs, docs/shear.md and its figures) at every level it has run on."""
     texts, pictures = [], []
     for level in LEVELS:
         directory = os.path.join(work, level)
         if os.path.isdir(directory):
             text, found = shear_tables.lines(directory, level)
+            if not found:   # a level the study has not run (its directory holds other studies' runs)
+                continue
             texts.append(text)
             if docs:
                 pictures += shear_tables.figure(found, level, os.path.join(ROOT, 'docs'))

@@ -128,12 +128,20 @@ def figure(found, level, directory):
                    markerfacecolor=colour if constraint == 'free' else 'none')
         envelope.plot([-v['P_x_nN'] for _, v in points], [v['P_z_nN'] for _, v in points], style, color=colour,
                       label=label, markerfacecolor=colour if constraint == 'free' else 'none')
+        undetached = [(b, v) for b, v in points if not v['detached']]   # the peak so far: a lower bound
+        force.plot([b for b, _ in undetached], [v['pull_off_nN'] for _, v in undetached], 'x', color='black',
+                   markersize=9)
+        envelope.plot([-v['P_x_nN'] for _, v in undetached], [v['P_z_nN'] for _, v in undetached], 'x',
+                      color='black', markersize=9)
     force.set_xlabel('pull angle beta [deg] (90: normal, 180: along the substrate)')
     force.set_ylabel('pull-off force along the pull [nN]')
+    force.set_yscale('log')   # from a few nN (frictionless at 165 deg) to the sliding limit over the pad
+    force.set_ylim(bottom=1.0)   # (the frictionless pad pulled along the substrate carries nothing)
     force.set_title(f'Pull-off force against pull angle ({level} mesh)')
     force.grid(alpha=0.3)
     force.legend(fontsize=7)
-    envelope.set_xlabel('-P_x at the peak [nN] (shear, away from the pad)')
+    envelope.set_xscale('symlog', linthresh=10)
+    envelope.set_xlabel('-P_x at the peak [nN] (shear, away from the pad; linear up to 10)')
     envelope.set_ylabel('P_z at the peak [nN] (normal)')
     envelope.set_title('Adhesion-shear envelope')
     envelope.axhline(0, color='grey', linewidth=0.5)
@@ -143,4 +151,5 @@ def figure(found, level, directory):
     name = f'shear-{level}.png'
     fig.savefig(os.path.join(directory, name), dpi=110)
     plt.close(fig)
-    return [(name, f'Pull-off force against pull angle and the (P_x, P_z) envelope at the peak ({level} mesh)')]
+    return [(name, f'Pull-off force against pull angle and the (P_x, P_z) envelope at the peak ({level} mesh; a '
+                   f'cross marks a run that ended attached, its peak so far a lower bound)')]
