@@ -148,7 +148,7 @@ def main():
 
 def shear_report(work, docs):
     """The shear study's tables (and with docs, docs/shear.md and its figures) at every level it has run on."""
-    texts, pictures = [], []
+    texts, pictures, found_by_level = [], [], {}
     for level in LEVELS:
         directory = os.path.join(work, level)
         if os.path.isdir(directory):
@@ -156,9 +156,11 @@ def shear_report(work, docs):
             if not found:   # a level the study has not run (its directory holds other studies' runs)
                 continue
             texts.append(text)
+            found_by_level[level] = found
             if docs:
                 pictures += shear_tables.figure(found, level, os.path.join(ROOT, 'docs'))
-    text = '\n'.join(texts)
+    texts.append(shear_tables.mesh_dependence(found_by_level))
+    text = '\n'.join(t for t in texts if t)
     print(text)
     if docs:
         template = open(os.path.join(ROOT, 'docs', 'shear-notes.md')).read()

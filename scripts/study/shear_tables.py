@@ -109,6 +109,28 @@ def lines(work, level):
     return '\n'.join(markdown), found
 
 
+def mesh_dependence(found_by_level):
+    """The pull-off forces of the grid points run on more than one level, and their change between the two finest:
+    the error bar of the coarser value (a bound while only two levels are run), in Markdown; '' without such points."""
+    levels = list(found_by_level)
+    shared = [key for key in grid() if sum(key in found for found in found_by_level.values()) >= 2]
+    if not shared:
+        return ''
+    markdown = ['### Mesh dependence of the pull-off force [nN]\n',
+                'Points run on more than one mesh level; the change between the two finest levels bounds the error of '
+                'the coarser one. A run that did not detach is marked as in the tables.\n',
+                '| law | across | beta | ' + ' | '.join(levels) + ' | change between the two finest |',
+                '|---|---|---|' + '---|' * (len(levels) + 1)]
+    for key in shared:
+        values = [found_by_level[level].get(key) for level in levels]
+        present = [v['pull_off_nN'] for v in values if v]
+        change = f'{100 * (present[-1] / present[-2] - 1):+.1f} %'
+        markdown.append(f'| {key[0]} | {key[1]} | {key[2]} | ' + ' | '.join(cell(v) for v in values) +
+                        f' | {change} |')
+    markdown.append('')
+    return '\n'.join(markdown)
+
+
 def figure(found, level, directory):
     """The pull-off force against the pull angle, and the envelope (P_x, P_z) at the peak, per law; returns (file,
     caption) pairs."""
@@ -140,7 +162,13 @@ def figure(found, level, directory):
     force.set_title(f'Pull-off force against pull angle ({level} mesh)')
     force.grid(alpha=0.3)
     force.legend(fontsize=7)
+    shear = [0.0] + sorted(-v['P_x_nN'] for v in found.values() if -v['P_x_nN'] > 0)
+    envelope.plot(shear, [x * math.tan(math.radians(30)) for x in shear], ':', color='grey',
+                  label='P_z = -P_x tan 30 deg (frictional adhesion, alpha* about 25-30 deg)')
+    envelope.legend(fontsize=7)
+    envelope.set_ylim(-5, 1.2 * max(v['P_z_nN'] for v in found.values()))
     envelope.set_xscale('symlog', linthresh=10)
+    envelope.set_xlim(left=-1.0)
     envelope.set_xlabel('-P_x at the peak [nN] (shear, away from the pad; linear up to 10)')
     envelope.set_ylabel('P_z at the peak [nN] (normal)')
     envelope.set_title('Adhesion-shear envelope')

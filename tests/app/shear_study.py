@@ -2,7 +2,8 @@
 """The shear study (run-study.py shear): every grid scene is derived from xml/studies/shear-pull.xml with its law,
 pull angle and constraint across the pull, and passes the app's validation with the coarse rotation's checkpoint
 (results/coarse/peel-rotation); the tables' pull quantities decompose a manufactured pull at 135 deg exactly (force
-along and across the pull, travel, work, dissipation), and a run's outcome is the app's own verdict.
+along and across the pull, travel, work, dissipation), the mesh-dependence table compares the points run on two
+levels, and a run's outcome is the app's own verdict.
 
     shear_study.py <spatula app>"""
 import math
@@ -62,6 +63,15 @@ for key, expected in (('pull_off_nN', 5.0), ('across_nN', 2.0), ('travel_at_peak
                       ('worst_balance_error', 5e-6), ('P_x_nN', 5 * c + 2 * s), ('P_z_nN', 5 * s - 2 * c)):
     check(abs(summary[key] - expected) < 1e-9, f'{key}: {summary[key]} against {expected}')
 check(shear_tables.pull_summary(rows[:1], beta) is None, 'a run still rotating has a pull summary')
+
+# The mesh dependence: a point run on two levels, its change between them; a point on one level only is left out.
+point = dict(summary, detached=True, complete=True)
+table = shear_tables.mesh_dependence({'coarse': {('amontons', 'free', 120): dict(point, pull_off_nN=28.0),
+                                                 ('amontons', 'free', 135): dict(point, pull_off_nN=56.0)},
+                                      'medium': {('amontons', 'free', 120): dict(point, pull_off_nN=29.4)}})
+check('| amontons | free | 120 | 28.00 | 29.40 | +5.0 % |' in table, f'mesh dependence: {table}')
+check('| 135 |' not in table, 'a point on one level has a mesh dependence row')
+check(shear_tables.mesh_dependence({'coarse': {('amontons', 'free', 120): point}}) == '', 'one level: a table')
 
 # The outcome is the app's: its detachment line, else the final travel reached (complete), else stopped.
 with tempfile.TemporaryDirectory() as work:
