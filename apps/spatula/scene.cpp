@@ -85,7 +85,7 @@ Scene read_scene(Teuchos::ParameterList user)
   scene.adhesion = contact::AdhesionParameters::from(user.sublist("Adhesion"), scene.material.young);
   // Laws that hold the pad along the substrate (the others leave a free X motion singular).
   const auto& law = scene.adhesion.settings.law;
-  const bool tangential = law == "stiction" || law == "adhesive friction";
+  const bool tangential = scene.adhesion.model && scene.adhesion.model->holds_tangentially();
   if (scene.loading.free_slide && !tangential)
     throw parameters::InputError("parameter 'Loading/free slide during lift' = true needs 'Adhesion/law' = 'stiction' "
                                  "or 'adhesive friction' (got '" + law + "'): without tangential adhesion nothing "

@@ -74,6 +74,7 @@ struct FrictionlessIntegrand {
 // Stiction on a flat substrate (laws/stiction.hpp).
 struct StictionIntegrand {
   contact::StictionLaw law;
+  static constexpr bool tangential = true;   // holds the pad along the substrate
   KOKKOS_INLINE_FUNCTION double far_bound(const double x[3]) const { return x[2] - law.substrate_height; }
   KOKKOS_INLINE_FUNCTION double cut_off() const { return law.law.r_cut; }
   KOKKOS_INLINE_FUNCTION double gap(const double x[3]) const { return x[2] - law.substrate_height; }
@@ -102,6 +103,12 @@ template <class Integrand>
 struct HistorySize<Integrand, std::void_t<decltype(Integrand::history_size)>> {
   static constexpr int value = Integrand::history_size;
 };
+// Whether an integrand's traction has a part along the substrate (its `tangential`; false where it declares none).
+template <class Integrand, class = void>
+struct Tangential : std::false_type {};
+template <class Integrand>
+struct Tangential<Integrand, std::void_t<decltype(Integrand::tangential)>>
+    : std::integral_constant<bool, Integrand::tangential> {};
 // Where an integrand with a history keeps the energy dissipated at a point [nN/nm]: its `dissipated_index`, -1 where
 // it declares none.
 template <class Integrand, class = void>

@@ -160,6 +160,7 @@ public:
   int quadrature_order() const override { return order_; }
   int history_size() const override { return HistorySize<Integrand>::value; }
   int dissipated_index() const override { return DissipatedIndex<Integrand>::value; }
+  bool holds_tangentially() const override { return Tangential<Integrand>::value; }
   bool symmetric() const override { return symmetric_tangent(integrand_); }
 
   ContactTotals assemble(const ContactFaceViews& faces, const ElementScatter& scatter) const override

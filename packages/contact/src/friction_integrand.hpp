@@ -27,6 +27,7 @@ struct AdhesiveFrictionIntegrand {
   AdhesiveFriction friction;
   static constexpr int history_size = 3;   // sliding anchor (X, Y) relative to A [nm], dissipated [nN/nm]
   static constexpr int dissipated_index = 2;
+  static constexpr bool tangential = true;   // holds the pad along the substrate
   KOKKOS_INLINE_FUNCTION bool symmetric_tangent() const { return friction.variational; }
   KOKKOS_INLINE_FUNCTION static double dissipated(const double* history) { return history[dissipated_index]; }
 

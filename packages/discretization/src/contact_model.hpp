@@ -64,6 +64,9 @@ public:
   virtual int history_size() const { return 0; }
   // Where such a history keeps the energy dissipated at the point [nN/nm]; -1: it keeps none.
   virtual int dissipated_index() const { return -1; }
+  // A traction along the substrate (stiction, friction): the law holds the pad there, so an end face free to move
+  // along the substrate is not a singular system.
+  virtual bool holds_tangentially() const { return false; }
   // false: the tangent is not symmetric (a sliding limit that depends on the gap); the linear solver factors LU.
   virtual bool symmetric() const { return true; }
   virtual ContactTotals assemble(const ContactFaceViews& faces, const ElementScatter& scatter) const = 0;
