@@ -6,10 +6,9 @@
 studies: table4 (peel by rotation), table6 (pull-off at 45/60/75/90 deg, also Table 5), stiction, gamma-W (Table 7),
 gamma-L (Table 8), rough (Fig. 14), all (these: the paper's); shear (beyond the paper: pulls at angles with friction,
 on the coarse mesh unless --mesh says otherwise; with --docs it writes docs/shear.md). Runs use one MPI rank each,
-`--jobs` of them at once (both cores by default); pull-offs
-start as soon as the rotation run they start from has written their checkpoint (a copy of it, <scene>.restart.h5, is
-what they read). Progress: one line per converged step of every run (stage, theta_y or u_z, elapsed, an estimate of
-what remains).
+`--jobs` of them at once (both cores by default); pull-offs start as soon as the rotation run they start from has
+written their checkpoint (a copy of it, <scene>.restart.h5, is what they read). Progress: one line per converged
+step of every run (stage, theta_y or u_z, elapsed, an estimate of what remains).
 
 Stopping and resuming: a study can be stopped at any moment (Ctrl-C, kill). Every run
 checkpoints its last converged state every few minutes (Output/checkpoint interval); the next `run-study.py` of the
@@ -120,7 +119,8 @@ def main():
           f'{time.time() - started:.0f} s' + (f'; failed: {", ".join(" ".join(f) for f in failed)}' if failed else ''),
           flush=True)
     if arguments.study == 'shear':
-        return shear_report(arguments.work, arguments.docs) or (1 if failed else 0)
+        shear_report(arguments.work, arguments.docs)
+        return 1 if failed else 0
     results, texts = {}, []
     for level in LEVELS:
         directory = os.path.join(arguments.work, level)
@@ -141,9 +141,14 @@ def main():
         template = open(os.path.join(ROOT, 'docs', 'validation-notes.md')).read()
         with open(os.path.join(docs, 'validation.md'), 'w') as out:
             out.write(template.replace('{{GLANCE}}', glance(results, accurate)).replace('{{TABLES}}', text).replace(
-                '{{FIGURES}}', '\n\n'.join(f'{caption}:\n\n![{caption}]({name})' for name, caption in pictures)))
+                '{{FIGURES}}', figure_markdown(pictures)))
         print('wrote docs/validation.md')
     return 1 if failed else 0
+
+
+def figure_markdown(pictures):
+    """The (file, caption) pairs of a page's figures as Markdown, each under its caption."""
+    return '\n\n'.join(f'{caption}:\n\n![{caption}]({name})' for name, caption in pictures)
 
 
 def shear_report(work, docs):
@@ -166,7 +171,7 @@ def shear_report(work, docs):
         template = open(os.path.join(ROOT, 'docs', 'shear-notes.md')).read()
         with open(os.path.join(ROOT, 'docs', 'shear.md'), 'w') as out:
             out.write(template.replace('{{TABLES}}', text).replace(
-                '{{FIGURES}}', '\n\n'.join(f'{caption}:\n\n![{caption}]({name})' for name, caption in pictures)))
+                '{{FIGURES}}', figure_markdown(pictures)))
         print('wrote docs/shear.md')
 
 
