@@ -5,7 +5,9 @@ The states' times are the load parameter (theta_y in degrees for a rotation, u_z
     scripts/render.sh scripts/render_states.py <output-dir>/mesh_states.xmf <picture.png> [--bottom] [time ...]
 
 Without times, up to four states spread over the run are drawn; with times, the states nearest to them. --bottom
-adds a view of the pad from below under each side view.
+adds a view of the pad from below under each side view. `--field NAME` colours by another cell field than I1, on a
+sequential scale from zero to its largest value over the states drawn (e.g. dissipated_by_friction [J/m^2], where
+the pad has slid).
 """
 import os
 import sys
@@ -20,6 +22,12 @@ _DisableFirstRenderCameraReset()
 
 arguments = [a for a in sys.argv[1:] if a != '--bottom']
 bottom = '--bottom' in sys.argv
+FIELD = 'I1'
+if '--field' in arguments:
+    at = arguments.index('--field')
+    FIELD = arguments[at + 1]
+    del arguments[at:at + 2]
+DIVERGING = FIELD == 'I1'   # the stress invariant: a symmetric scale about zero; another field from zero up
 xmf, png = os.path.abspath(arguments[0]), arguments[1]  # the reader resolves mesh.h5 from an absolute path only
 reader = Xdmf3ReaderS(FileName=[xmf])
 reader.UpdatePipelineInformation()
@@ -32,11 +40,14 @@ else:
     count = min(4, len(times))
     chosen = [times[round(i * (len(times) - 1) / max(count - 1, 1))] for i in range(count)]
 full = Reflect(Input=reader, Plane='Y Min', CopyInput=1)
-largest = 1e-6
-for time in chosen:  # one symmetric colour scale for all panels
+largest = 1e-12
+for time in chosen:  # one colour scale for all panels
     full.UpdatePipeline(time)
-    largest = max(largest, *(abs(v) for v in full.CellData['I1'].GetRange()))
-largest *= 0.5  # a few elements at the pad's bend carry the extremes; saturate them to show the rest
+    if FIELD not in full.CellData.keys():
+        sys.exit(f'{xmf}: no cell field {FIELD} (fields: {", ".join(full.CellData.keys())})')
+    largest = max(largest, *(abs(v) for v in full.CellData[FIELD].GetRange()))
+if DIVERGING:
+    largest *= 0.5  # a few elements at the pad's bend carry the extremes; saturate them to show the rest
 
 width, height = 1400, 520
 
@@ -54,15 +65,18 @@ def panel(time, title, direction, up, focus, scale):
     display.SetRepresentationType('Surface With Edges')
     display.EdgeColor = [0.2, 0.2, 0.2]
     display.Ambient, display.Diffuse = 1.0, 0.0  # flat colours: the scale reads the same on every face
-    ColorBy(display, ('CELLS', 'I1'))
-    lookup = GetColorTransferFunction('I1')
-    lookup.ApplyPreset('Cool to Warm', True)
-    lookup.RescaleTransferFunction(-largest, largest)
+    ColorBy(display, ('CELLS', FIELD))
+    lookup = GetColorTransferFunction(FIELD)
+    lookup.ApplyPreset('Cool to Warm' if DIVERGING else 'Reds', True)
+    if not DIVERGING:
+        lookup.InvertTransferFunction()   # white at zero: the untouched body stays light
+    lookup.RescaleTransferFunction(-largest if DIVERGING else 0.0, largest)
     display.SetScalarBarVisibility(view, True)
     bar = GetScalarBar(lookup, view)
-    bar.Title, bar.ComponentTitle = 'I1', ''
+    bar.Title, bar.ComponentTitle = FIELD, ''
     bar.TitleColor = bar.LabelColor = [0, 0, 0]
-    label = Text(Text=f'state at load parameter {time:.2f}   ({title}, colour: I1 = tr(sigma) / E)')
+    colour = 'I1 = tr(sigma) / E' if FIELD == 'I1' else FIELD
+    label = Text(Text=f'state at load parameter {time:.2f}   ({title}, colour: {colour})')
     label_display = Show(label, view)
     label_display.Color = [0, 0, 0]
     label_display.FontSize = 14

@@ -8,7 +8,9 @@ gamma-L (Table 8), rough (Fig. 14), all (these: the paper's); shear (beyond the 
 on the coarse mesh unless --mesh says otherwise; with --docs it writes docs/shear.md). Runs use one MPI rank each,
 `--jobs` of them at once (both cores by default); pull-offs start as soon as the rotation run they start from has
 written their checkpoint (a copy of it, <scene>.restart.h5, is what they read). Progress: one line per converged
-step of every run (stage, theta_y or u_z, elapsed, an estimate of what remains).
+step of every run (stage, theta_y or u_z, elapsed, an estimate of what remains). With `--engine snakemake` the
+Snakemake workflow (scripts/workflow/Snakefile) schedules the same runs instead, a job per run, each pull-off once
+its rotation is complete; progress is Snakemake's count of jobs, each run's own in <work>/<level>/<scene>.log.
 
 Stopping and resuming: a study can be stopped at any moment (Ctrl-C, kill). Every run
 checkpoints its last converged state every few minutes (Output/checkpoint interval); the next `run-study.py` of the
@@ -42,7 +44,10 @@ This file is the command line; the work is in the package scripts/study/: scenes
 stands), tables.py (the tables, with the paper's values in paper-values.csv) and figures.py.
 """
 import argparse
+import json
 import os
+import shlex
+import subprocess
 import sys
 import time
 
@@ -71,6 +76,10 @@ def main():
     parser.add_argument('--no-run', action='store_true', help='only tabulate (and with --docs, document) the runs present')
     parser.add_argument('--scene', action='append', default=[], metavar='SCENE',
                         help="run only this scene of the study (repeat for more); the tables cover every run present")
+    parser.add_argument('--engine', choices=('runner', 'snakemake'), default='runner',
+                        help="who schedules the runs: this script's runner (default: it starts a pull-off as soon as "
+                             "the rotation has written its checkpoint) or the Snakemake workflow "
+                             "(scripts/workflow/Snakefile: a job per run, a pull-off after its rotation completes)")
     parser.add_argument('--carry', action='store_true',
                         help=f'keep the last checkpointed state of each run in results/<level>/<scene>'
                              f'{STOPPED_SUFFIX}/ as it goes (commit it), and resume the runs kept there')
@@ -90,6 +99,8 @@ def main():
         parser.error(f"--set names scene(s) not in study {arguments.study}: {', '.join(sorted(unknown))}")
     if arguments.carry and not archiving():
         parser.error('--carry keeps runs in results, which runs made with --set are not')
+    if arguments.carry and arguments.engine == 'snakemake':
+        parser.error('--carry is the runner\'s: with --engine snakemake a stopped run resumes in its --work directory')
     if not os.path.exists(APP):
         sys.exit(f'{APP} not found: build first (bash scripts/build.sh)')
     runs = planned_runs(arguments.study, arguments.mesh)
@@ -108,7 +119,12 @@ def main():
     for level, scene in runs if archiving() else []:   # complete runs of an earlier study not yet kept
         if complete(os.path.join(arguments.work, level), scene) and not complete(os.path.join(ARCHIVE, level), scene):
             archive(arguments.work, level, scene)
-    failed = [] if arguments.no_run else run_all(runs, arguments.work, arguments.jobs, arguments.carry)
+    if arguments.no_run:
+        failed = []
+    elif arguments.engine == 'snakemake':
+        failed = run_workflow(runs, arguments.work, arguments.jobs, arguments.mesh, arguments.set)
+    else:
+        failed = run_all(runs, arguments.work, arguments.jobs, arguments.carry)
     if archiving():   # the tables cover every kept run, at every level (also those no study runs, as the fine
         # level's rotation from 60 deg, and the pull-off at 60 deg its Table 4 is joined to)
         restore(arguments.work, [(level, scene) for level in LEVELS if os.path.isdir(os.path.join(ARCHIVE, level))
@@ -146,6 +162,22 @@ def main():
     return 1 if failed else 0
 
 
+def run_workflow(runs, work, jobs, mesh, overrides):
+    """Runs the (level, scene) pairs through the Snakemake workflow, `jobs` at once, a stopped one resumed (the
+    workflow's job runs scripts/study/single_run.py); returns the failed ones (no marker of completion)."""
+    work = os.path.abspath(work)
+    markers = {run: os.path.join(work, run[0], run[1] + '.complete') for run in runs}
+    settings = [(f'{scene}:' if scene else '') + '/'.join(path + (name,)) + f'={value}'
+                for scene, path, name, value in overrides]
+    command = (['snakemake', '-s', os.path.join(ROOT, 'scripts', 'workflow', 'Snakefile'), '-d', work, '--cores',
+                str(jobs), '--rerun-incomplete', '--keep-going'] + list(markers.values()) +
+               ['--config', f'work={work}', f'mesh={mesh or ""}', 'set=' + json.dumps(settings)])
+    print('run-study: ' + ' '.join(shlex.quote(c) for c in command) + f'\n  (each run\'s progress: '
+          f'{work}/<level>/<scene>.log)', flush=True)
+    subprocess.call(command)
+    return [run for run, marker in markers.items() if not os.path.exists(marker)]
+
+
 def figure_markdown(pictures):
     """The (file, caption) pairs of a page's figures as Markdown, each under its caption."""
     return '\n\n'.join(f'{caption}:\n\n![{caption}]({name})' for name, caption in pictures)
@@ -168,6 +200,8 @@ def shear_report(work, docs):
     text = '\n'.join(t for t in texts if t)
     print(text)
     if docs:
+        works = [os.path.join(work, level) for level in reversed(LEVELS) if level in found_by_level]
+        pictures += field_pictures(works, os.path.join(ROOT, 'docs'), shear_tables.SLIDING_PICTURES)
         template = open(os.path.join(ROOT, 'docs', 'shear-notes.md')).read()
         with open(os.path.join(ROOT, 'docs', 'shear.md'), 'w') as out:
             out.write(template.replace('{{TABLES}}', text).replace(

@@ -121,22 +121,25 @@ FIELD_PICTURES = (
 )
 
 
-def field_pictures(works, directory):
-    """Renders FIELD_PICTURES from the finest level among `works` (finest first) whose run wrote fields; returns
-    (file, caption) pairs. A picture no run can render now (runs restored from results keep no fields) keeps
-    its earlier rendering in `directory`, if there is one, so that documenting from the archive loses no figure."""
+def field_pictures(works, directory, pictures=FIELD_PICTURES):
+    """Renders `pictures` (scene, times, file, caption[, field]) from the finest level among `works` (finest first)
+    whose run wrote fields; returns (file, caption) pairs. `times` may be a function of the run's directory (the states
+    to draw, from its curve); `field` colours by that cell field instead of I1. A picture no run can render now (runs
+    restored from results keep no fields) keeps its earlier rendering in `directory`, if there is one, so that
+    documenting from the archive loses no figure."""
     renderer = shutil.which('pvbatch') and shutil.which('xvfb-run')
     if not renderer:
         print('pvbatch/xvfb-run not installed: field pictures not rendered (earlier renderings are kept)')
     out = []
-    for scene, times, name, caption in FIELD_PICTURES:
+    for scene, times, name, caption, *field in pictures:
         candidates = ((os.path.join(work, scene + suffix, 'mesh_states.xmf'), caption + note) for work in works
                       for suffix, note in (('', ''), ('.incomplete', ' (the run did not finish: its last written state)')))
         found = next(((states, text) for states, text in candidates if os.path.exists(states)), None)
         if found and renderer:
+            wanted = times(os.path.dirname(found[0])) if callable(times) else times
             command = ['bash', os.path.join(ROOT, 'scripts', 'render.sh'),
                        os.path.join(ROOT, 'scripts', 'render_states.py'), found[0], os.path.join(directory, name),
-                       '--bottom'] + [str(t) for t in times]
+                       '--bottom'] + ['--field', field[0]] * bool(field) + [str(t) for t in wanted]
             if subprocess.call(command) == 0:
                 out.append((name, found[1]))
                 continue

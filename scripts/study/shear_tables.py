@@ -181,3 +181,25 @@ def figure(found, level, directory):
     plt.close(fig)
     return [(name, f'Pull-off force against pull angle and the (P_x, P_z) envelope at the peak ({level} mesh; a '
                    f'cross marks a run that ended attached, its peak so far a lower bound)')]
+
+
+def pulled_states(beta):
+    """The states a picture of a pull at beta draws: the end face's lift along the pull (the field output's time) at
+    the pull-off force and at the run's last state, from the curve in the run's directory."""
+    c, s = math.cos(math.radians(beta)), math.sin(math.radians(beta))
+
+    def times(run_directory):
+        rows = read_curve(os.path.dirname(run_directory), os.path.basename(run_directory))
+        pulled = [r for r in rows if r['stage'] == 'lift']
+        peak = max(pulled, key=lambda r: r['P_x_nN'] * c + r['P_z_nN'] * s)
+        return [r['u_x_nm'] * c + r['u_z_nm'] * s for r in (peak, pulled[-1])]
+    return times
+
+
+# Where the pad slid (docs/shear.md): the free and the held pull at 150 deg with the extended Amontons law.
+SLIDING_PICTURES = tuple(
+    (scene_name('amontons', constraint, 150), pulled_states(150), f'shear-sliding-amontons-{constraint}-150.png',
+     f'Where the pad slid, extended Amontons law, pulled at 150 deg with the end face {constraint} across the pull: '
+     'side view and the pad from below at the pull-off force and at the last state, coloured by the energy dissipated '
+     'by sliding per unit area, dissipated_by_friction [J/m^2]', 'dissipated_by_friction')
+    for constraint in ('free', 'held'))

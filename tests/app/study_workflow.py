@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """The studies' Snakemake workflow (scripts/workflow/Snakefile) against run-study.py: the coarse Table 6 study's jobs
 (a run per scene, each pull-off after the rotation, the tables last); that study restored from results/ gives
-run-study.py's tables byte for byte; and the coarse rough study run afresh (inclined to 8 deg only) gives the same
-curves (all but the wall clock) and tables as run-study.py's runs. Skipped (exit 77) where snakemake is missing.
+run-study.py's tables byte for byte; and the coarse rough study run afresh (inclined to 8 deg only) by the workflow,
+as `run-study.py --engine snakemake` starts it, gives the same curves (all but the wall clock) and tables as
+run-study.py's own runner. Skipped (exit 77) where snakemake is missing.
 
     study_workflow.py <spatula>"""
 import os
@@ -55,8 +56,9 @@ with tempfile.TemporaryDirectory() as root:
 
     # Run afresh: the same curves and tables as run-study.py's runs.
     override = 'Loading/theta_y=8'
-    check(workflow(root, 'rough', 'mesh=coarse', f'work={root}/fresh', f'set=["{override}"]').returncode == 0,
-          'the rough study run by the workflow')
+    fresh = run_study('rough', f'{root}/fresh', '--engine', 'snakemake', '--set', override)
+    check(fresh.returncode == 0 and '3 of 3 steps (100%) done' in fresh.stdout + fresh.stderr,
+          'the rough study run by the workflow (run-study.py --engine snakemake)')
     check(run_study('rough', f'{root}/runner', '--set', override).returncode == 0, 'the rough study run by run-study.py')
     for scene in ('rough-z0-0', 'rough-z0-4', 'rough-z0-8'):
         rows, others, differences = curve_differences(*(os.path.join(root, work, 'coarse', scene)
