@@ -6,8 +6,8 @@ The states' times are the load parameter (theta_y in degrees for a rotation, u_z
 
 Without times, up to four states spread over the run are drawn; with times, the states nearest to them. --bottom
 adds a view of the pad from below under each side view. `--field NAME` colours by another cell field than I1, on a
-sequential scale from zero to its largest value over the states drawn (e.g. dissipated_by_friction [J/m^2], where
-the pad has slid).
+logarithmic scale over the three decades below its largest value over the states drawn (e.g. dissipated_by_friction
+[J/m^2], where the pad has slid).
 """
 import os
 import sys
@@ -68,9 +68,13 @@ def panel(time, title, direction, up, focus, scale):
     ColorBy(display, ('CELLS', FIELD))
     lookup = GetColorTransferFunction(FIELD)
     lookup.ApplyPreset('Cool to Warm' if DIVERGING else 'Reds', True)
-    if not DIVERGING:
-        lookup.InvertTransferFunction()   # white at zero: the untouched body stays light
-    lookup.RescaleTransferFunction(-largest if DIVERGING else 0.0, largest)
+    if DIVERGING:
+        lookup.RescaleTransferFunction(-largest, largest)
+    else:   # three decades below the largest value, white at and below them (the untouched body stays light)
+        lookup.InvertTransferFunction()
+        lookup.RescaleTransferFunction(1e-3 * largest, largest)
+        lookup.UseLogScale = 1
+        lookup.NanColor = [1.0, 1.0, 1.0]
     display.SetScalarBarVisibility(view, True)
     bar = GetScalarBar(lookup, view)
     bar.Title, bar.ComponentTitle = FIELD, ''
