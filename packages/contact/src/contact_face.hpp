@@ -147,17 +147,12 @@ struct FacePoint {
     elements::gauss_point(order, a, s, ws);
     elements::gauss_point(order, b, t, wt);
     Surface::evaluate(s, t, shape, dshape);
-    double Xs[3] = {0, 0, 0}, Xt[3] = {0, 0, 0};
     for (int k = 0; k < Surface::nodes; ++k)
       for (int i = 0; i < 3; ++i) {
         X[i] += shape[k] * Xn[k][i];
         A[i] += shape[k] * An[k][i];
-        Xs[i] += dshape[k][0] * Xn[k][i];
-        Xt[i] += dshape[k][1] * Xn[k][i];
       }
-    const double normal[3] = {Xs[1] * Xt[2] - Xs[2] * Xt[1], Xs[2] * Xt[0] - Xs[0] * Xt[2],
-                              Xs[0] * Xt[1] - Xs[1] * Xt[0]};
-    dA = ::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]) * ws * wt;
+    dA = elements::area_element<Surface>(dshape, Xn) * ws * wt;
   }
   // (Xn: the nodes' reference positions the point was made with.)
   KOKKOS_INLINE_FUNCTION void position(const double Xn[Surface::nodes][3], const double u[Surface::nodes][3],

@@ -122,6 +122,9 @@ namespace {
 template <class Surface>
 double face_mean(const NodeSpace& space, std::size_t face, int order, const double* values, int stride)
 {
+  double Xn[Surface::nodes][3];
+  for (int k = 0; k < Surface::nodes; ++k)
+    for (int i = 0; i < 3; ++i) Xn[k][i] = space.coordinates[space.faces[face][k]][i];
   double area = 0.0, sum = 0.0;
   for (int a = 0; a < order; ++a)
     for (int b = 0; b < order; ++b) {
@@ -129,14 +132,7 @@ double face_mean(const NodeSpace& space, std::size_t face, int order, const doub
       elements::gauss_point(order, a, s, ws);
       elements::gauss_point(order, b, t, wt);
       Surface::evaluate(s, t, shape, derivatives);
-      double Xs[3] = {0, 0, 0}, Xt[3] = {0, 0, 0};
-      for (int k = 0; k < Surface::nodes; ++k)
-        for (int i = 0; i < 3; ++i) {
-          Xs[i] += derivatives[k][0] * space.coordinates[space.faces[face][k]][i];
-          Xt[i] += derivatives[k][1] * space.coordinates[space.faces[face][k]][i];
-        }
-      const double dA = std::hypot(Xs[1] * Xt[2] - Xs[2] * Xt[1], Xs[2] * Xt[0] - Xs[0] * Xt[2],
-                                   Xs[0] * Xt[1] - Xs[1] * Xt[0]) * ws * wt;
+      const double dA = elements::area_element<Surface>(derivatives, Xn) * ws * wt;
       area += dA;
       sum += dA * values[(a * order + b) * stride];
     }

@@ -46,4 +46,20 @@ struct Quad9Surface {
   }
 };
 
+// The area element |X_,s x X_,t| of a face with nodes Xn at a point where the shape functions' derivatives are dN
+// (times the point's Gauss weights, the area the point stands for).
+template <class Surface>
+KOKKOS_INLINE_FUNCTION double area_element(const double dN[Surface::nodes][2], const double Xn[Surface::nodes][3])
+{
+  double Xs[3] = {0, 0, 0}, Xt[3] = {0, 0, 0};
+  for (int k = 0; k < Surface::nodes; ++k)
+    for (int i = 0; i < 3; ++i) {
+      Xs[i] += dN[k][0] * Xn[k][i];
+      Xt[i] += dN[k][1] * Xn[k][i];
+    }
+  const double normal[3] = {Xs[1] * Xt[2] - Xs[2] * Xt[1], Xs[2] * Xt[0] - Xs[0] * Xt[2],
+                            Xs[0] * Xt[1] - Xs[1] * Xt[0]};
+  return ::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+}
+
 }  // namespace spatula::elements
