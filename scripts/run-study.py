@@ -58,7 +58,7 @@ from study.archive import ARCHIVE, STOPPED_SUFFIX, archive, archiving, linked_eq
 from study.figures import field_pictures, plots  # noqa: E402
 from study.runner import APP, run_all  # noqa: E402
 from study.runs import complete  # noqa: E402
-from study.scenes import DEPENDS, OVERRIDES, STUDIES, parse_override, planned_runs  # noqa: E402
+from study.scenes import DEPENDS, OVERRIDES, STUDIES, format_override, parse_override, planned_runs  # noqa: E402
 from study.glance import glance  # noqa: E402
 from study import shear_tables  # noqa: E402
 from study.tables import error_bars, write_tables  # noqa: E402
@@ -167,8 +167,7 @@ def run_workflow(runs, work, jobs, mesh, overrides):
     workflow's job runs scripts/study/single_run.py); returns the failed ones (no marker of completion)."""
     work = os.path.abspath(work)
     markers = {run: os.path.join(work, run[0], run[1] + '.complete') for run in runs}
-    settings = [(f'{scene}:' if scene else '') + '/'.join(path + (name,)) + f'={value}'
-                for scene, path, name, value in overrides]
+    settings = [format_override(override) for override in overrides]
     command = (['snakemake', '-s', os.path.join(ROOT, 'scripts', 'workflow', 'Snakefile'), '-d', work, '--cores',
                 str(jobs), '--rerun-incomplete', '--keep-going'] + list(markers.values()) +
                ['--config', f'work={work}', f'mesh={mesh or ""}', 'set=' + json.dumps(settings)])

@@ -139,7 +139,7 @@ def field_pictures(works, directory, pictures=FIELD_PICTURES):
             wanted = times(os.path.dirname(found[0])) if callable(times) else times
             command = ['bash', os.path.join(ROOT, 'scripts', 'render.sh'),
                        os.path.join(ROOT, 'scripts', 'render_states.py'), found[0], os.path.join(directory, name),
-                       '--bottom'] + ['--field', field[0]] * bool(field) + [str(t) for t in wanted]
+                       '--bottom'] + (['--field', field[0]] if field else []) + [str(t) for t in wanted]
             if subprocess.call(command) == 0:
                 out.append((name, found[1]))
                 continue

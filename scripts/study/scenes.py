@@ -47,6 +47,12 @@ def parse_override(text):
     return match.group(1), tuple(path), name, match.group(3)
 
 
+def format_override(override):
+    """The text parse_override reads back as `override` (a study run by the workflow gets its --set so)."""
+    scene, path, name, value = override
+    return (f'{scene}:' if scene else '') + '/'.join(path + (name,)) + f'={value}'
+
+
 def parameter_type(value):
     """The Teuchos type a new parameter's text asks for: bool, int, double, else string."""
     if value in ('true', 'false'):

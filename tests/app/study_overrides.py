@@ -24,6 +24,7 @@ for entry in ('Linear Solver/lag=4', 'Linear Solver/MUMPS/low rank tolerance=0.0
               'peel-rotation:Loading/theta_y=90.0', 'pull-off-45:Loading/Lift Steps/maximum=5.0',
               'Output/write mesh=false'):
     study.OVERRIDES.append(study.parse_override(entry))
+    check(study.format_override(study.OVERRIDES[-1]) == entry, f"'{entry}' does not read back as itself")
 rotation, pull_off, other = (study.scene_text(s) for s in ('peel-rotation', 'pull-off-45', 'pull-off-60'))
 check(parameter(rotation, 'theta_y') == ('double', '90.0'), f"scoped theta_y: {parameter(rotation, 'theta_y')}")
 check(parameter(before, 'theta_y') != ('double', '90.0'), 'the scene text before the overrides already had them')

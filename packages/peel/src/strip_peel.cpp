@@ -24,11 +24,11 @@ struct Strip {
   std::unique_ptr<analysis::LoadPath> path;
 };
 
-Strip make_strip(const mesh::HexMesh& mesh, const discretization::Constraints& constraints,
-                 const contact::AdhesionSettings& settings, double young, Teuchos::RCP<const Teuchos::Comm<int>> comm)
+Strip make_strip(const mesh::HexMesh& mesh, const mesh::Partition& partition,
+                 const discretization::Constraints& constraints, const contact::AdhesionSettings& settings,
+                 double young, Teuchos::RCP<const Teuchos::Comm<int>> comm)
 {
   Strip strip;
-  const auto partition = mesh::partition_mesh(mesh, comm->getSize());
   discretization::SolidParameters solid;
   solid.young = young;
   const auto contact = contact::make_contact_model(settings);
@@ -92,7 +92,8 @@ StripPeelResult peel_strip(const StripPeelParameters& p, Teuchos::RCP<const Teuc
   s.lennard_jones.r_cut = 10.0;
   s.substrate_height = -s.lennard_jones.equilibrium_gap();
   const auto peel_constraints = pulled_along(constraints, theta);
-  Strip peel = make_strip(mesh, peel_constraints, s, p.young, comm);
+  const auto partition = mesh::partition_mesh(mesh, comm->getSize());
+  Strip peel = make_strip(mesh, partition, peel_constraints, s, p.young, comm);
   if (pretension && !peel.system->contact_model()->holds_tangentially())
     throw std::invalid_argument("peel_strip: a pre-strain needs a law that holds the strip along the substrate "
                                 "(stiction or adhesive friction), not '" + p.law + "'");
@@ -110,7 +111,7 @@ StripPeelResult peel_strip(const StripPeelParameters& p, Teuchos::RCP<const Teuc
     auto frictionless = s;
     frictionless.law = "frictionless";
     const auto stretch_constraints = pulled_along(constraints, 0.0);
-    Strip stretch = make_strip(mesh, stretch_constraints, frictionless, p.young, comm);
+    Strip stretch = make_strip(mesh, partition, stretch_constraints, frictionless, p.young, comm);
     if (const auto failure = stretch.path->advance(Master::lift, p.pre_strain * p.length, control, steps, 1.0, {})) {
       result.failure = "stretching the strip: " + failure->reason;
       return result;
@@ -141,9 +142,9 @@ StripPeelResult peel_strip(const StripPeelParameters& p, Teuchos::RCP<const Teuc
   if (failure) result.failure = failure->reason;
   result.energy_balance = steady_peel_force(law, {p.half_width, p.thickness}, s.lennard_jones.work_of_adhesion(),
                                             theta, result.pre_stretch);
-  result.sliding_dissipation = peel.path->last().sliding - peel.path->points().front().sliding;
-  double sum = 0.0, weight = 0.0;
   const auto& points = peel.path->points();
+  result.sliding_dissipation = points.back().sliding - points.front().sliding;
+  double sum = 0.0, weight = 0.0;
   for (std::size_t k = 0; k < points.size(); ++k) {
     const double pulled = points[k].lift - start;
     result.curve.emplace_back(pulled, points[k].force / p.half_width);

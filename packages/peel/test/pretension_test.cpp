@@ -7,6 +7,7 @@
 // lies between the held strip's and Kendall's, and sliding dissipates energy.
 #include "peel/strip_peel.hpp"
 #include "peel/peel_balance.hpp"
+#include "discretization/solid_model.hpp"
 
 #include <Teuchos_DefaultComm.hpp>
 #include <gtest/gtest.h>
@@ -38,7 +39,7 @@ Peeled peel_stretched(const peel::StripPeelParameters& parameters)
 {
   auto comm = Teuchos::DefaultComm<int>::getComm();
   Peeled peeled{peel::peel_strip(parameters, comm)};
-  const auto law = laws::NeoHookean::from_young(parameters.young, 0.2);
+  const auto law = laws::NeoHookean::from_young(parameters.young, discretization::SolidParameters{}.poisson);
   peeled.kendall = peel::steady_peel_force(law, {parameters.half_width, parameters.thickness},
                                            contact::LennardJones{}.work_of_adhesion(),
                                            parameters.angle_degrees * M_PI / 180.0, 1.0);
