@@ -56,8 +56,15 @@ for case in full read-only removed; do
   case $case in
     full) dd if=/dev/zero of=disk/filler bs=4k > /dev/null 2>&1; reason="No space left on device" ;;
     read-only)   # a read-only view of the output directory over it (the run's open files stay writable)
-      mount --bind disk/out.partial disk/out.partial && mount -o remount,bind,ro disk/out.partial ||
-        fail "read-only: cannot remount"
+      # The remount is refused (busy) while the run has a file open for writing through the new view: the run
+      # opens one at every step, so try again until it falls between two writes.
+      mount --bind disk/out.partial disk/out.partial || fail "read-only: cannot bind"
+      remounted=false
+      for _ in $(seq 200); do
+        mount -o remount,bind,ro disk/out.partial 2>/dev/null && { remounted=true; break; }
+        sleep 0.01
+      done
+      $remounted || fail "read-only: cannot remount"
       reason="Read-only file system" ;;
     removed) rm -rf disk/out.partial; reason="No such file or directory" ;;
   esac
