@@ -9,8 +9,9 @@ on the coarse mesh unless --mesh says otherwise; with --docs it writes docs/shea
 `--jobs` of them at once (both cores by default); pull-offs start as soon as the rotation run they start from has
 written their checkpoint (a copy of it, <scene>.restart.h5, is what they read). Progress: one line per converged
 step of every run (stage, theta_y or u_z, elapsed, an estimate of what remains). With `--engine snakemake` the
-Snakemake workflow (scripts/workflow/Snakefile) schedules the same runs instead, a job per run, each pull-off once
-its rotation is complete; progress is Snakemake's count of jobs, each run's own in <work>/<level>/<scene>.log.
+Snakemake workflow (scripts/workflow/Snakefile) schedules the same runs instead, a job per run (a rotation in parts,
+each pull-off once its checkpoint is written); progress is Snakemake's count of jobs, each run's own in
+<work>/<level>/<scene>.log.
 
 Stopping and resuming: a study can be stopped at any moment (Ctrl-C, kill). Every run
 checkpoints its last converged state every few minutes (Output/checkpoint interval); the next `run-study.py` of the
@@ -79,7 +80,7 @@ def main():
     parser.add_argument('--engine', choices=('runner', 'snakemake'), default='runner',
                         help="who schedules the runs: this script's runner (default: it starts a pull-off as soon as "
                              "the rotation has written its checkpoint) or the Snakemake workflow "
-                             "(scripts/workflow/Snakefile: a job per run, a pull-off after its rotation completes)")
+                             "(scripts/workflow/Snakefile: a job per run, a rotation in parts, a pull-off once its part is done)")
     parser.add_argument('--carry', action='store_true',
                         help=f'keep the last checkpointed state of each run in results/<level>/<scene>'
                              f'{STOPPED_SUFFIX}/ as it goes (commit it), and resume the runs kept there')

@@ -179,6 +179,18 @@ void write_checkpoint(const std::string& file, const std::string& label, const d
   copy.renamed = true;
 }
 
+bool holds_checkpoint(const std::string& file, const std::string& label)
+{
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(file, error)) return false;
+  try {
+    io::Hdf5File in(file, io::Hdf5File::Mode::read);
+    return in.exists("/checkpoints/" + label + "/displacements");
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
 bool resumable(const std::string& file)
 {
   std::error_code error;

@@ -59,6 +59,8 @@ void write_checkpoint(const std::string& file, const std::string& label, const d
 std::optional<analysis::LoadPath::JumpInProgress> read_jump_in_progress(const Scene& scene,
                                                                        const discretization::DiscreteSystem& system);
 
+// Whether `file` holds the checkpoint `label` (false where it cannot be read).
+bool holds_checkpoint(const std::string& file, const std::string& label);
 // Whether `file` holds a complete 'last state' checkpoint with its run record (a run that can be resumed).
 bool resumable(const std::string& file);
 // Whether the 'last state' checkpoint in `file` holds the state its stiction anchors were set at.

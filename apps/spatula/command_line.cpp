@@ -5,6 +5,8 @@
 #include <Kokkos_Core.hpp>
 #include <Trilinos_version.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 namespace spatula::app {
@@ -16,6 +18,10 @@ const char* usage()
          "options:\n"
          "  --resume            go on with the stopped run of this scene (killed, interrupted or failed) from the last\n"
          "                      state it checkpointed (Output/checkpoint interval), in the same Output/directory\n"
+         "  --stop-after-checkpoint THETA\n"
+         "                      stop once the rotation has written its checkpoint at THETA deg (one of\n"
+         "                      'Loading/checkpoints at theta_y'), exit 0: the run is left stopped there (a workflow\n"
+         "                      job that hands a pull-off its start), to be resumed later\n"
          "  --validate-only     check the scene, the mesh's memory and the output directory, and exit\n"
          "  --print-parameters  print every valid key with its default and documentation\n"
          "  --version           print the version, the commit and the Trilinos and Kokkos it runs on\n"
@@ -30,6 +36,19 @@ CommandLine parse_command_line(int argc, const char* const* argv)
   for (int i = 1; i < argc; ++i) {
     const std::string argument = argv[i];
     if (argument == "--resume") line.resume = true;
+    else if (argument == "--stop-after-checkpoint" || argument.rfind("--stop-after-checkpoint=", 0) == 0) {
+      const bool attached = argument.size() > std::string("--stop-after-checkpoint").size();
+      const std::string value = attached ? argument.substr(argument.find('=') + 1) : i + 1 < argc ? argv[++i] : "";
+      char* end = nullptr;
+      const double theta = std::strtod(value.c_str(), &end);
+      if (value.empty() || *end != '\0' || !std::isfinite(theta)) {
+        if (line.error.empty())
+          line.error = "--stop-after-checkpoint needs an inclination in degrees (one of the scene's 'Loading/"
+                       "checkpoints at theta_y'), got '" + value + "'";
+      } else {
+        line.stop_after_checkpoint = theta;
+      }
+    }
     else if (argument == "--validate-only") line.validate_only = true;
     else if (argument == "--print-parameters") line.print_parameters = true;
     else if (argument == "--version") line.version = true;

@@ -1,6 +1,7 @@
 // The program's command line: its own options, and those it hands to Kokkos.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -9,6 +10,7 @@ namespace spatula::app {
 struct CommandLine {
   std::string scene_file;   // empty: the embedded default scene
   bool resume = false;
+  std::optional<double> stop_after_checkpoint;   // --stop-after-checkpoint THETA [deg]
   bool validate_only = false;
   bool print_parameters = false;
   bool help = false;

@@ -80,6 +80,7 @@ Checked check_everything(const spatula::app::CommandLine& options, const Teuchos
     run.scene = app::read_scene(user);
     run.shape.emplace(run.scene->geometry);
     if (options.resume) run.resume_from = app::prepare_resume(*run.scene);
+    if (options.stop_after_checkpoint) app::set_stop_after_checkpoint(*run.scene, *options.stop_after_checkpoint);
   });
   app::agree(comm, [&] { app::check_output_directory(*run.scene, options.scene_file); }, true);
   app::agree(comm, [&] {
@@ -220,8 +221,8 @@ void leave_stopped_run(spatula::io::OutputDirectory& directory, const spatula::a
 {
   write_failure_note(directory, stop, exit_code);
   directory.abandon();
-  std::cerr << "spatula: " << (stop.signal ? "interrupted" : "solver failure") << " at step " << stop.failure.step
-            << ", " << stop.stage << " = " << stop.failure.load << ": " << stop.failure.reason
+  const char* what = stop.paused ? "stopped" : stop.signal ? "interrupted" : "solver failure";
+  std::cerr << "spatula: " << what << " at step " << stop.failure.step << ", " << stop.stage << " = " << stop.failure.load << ": " << stop.failure.reason
             << "\nspatula: results up to the last converged state, a checkpoint to go on from and FAILURE.txt (how) "
             << "are in " << directory.incomplete_path() << "/\n";
 }
@@ -297,7 +298,7 @@ int main(int argc, char** argv)
       const auto stop =
           app::run_simulation(scene, *run.shape, run.mesh, run.partition, comm, directory.get(), fields.get(), out);
       if (stop) {
-        const int exit_code = stop->signal ? 128 + stop->signal : 1;
+        const int exit_code = stop->paused ? 0 : stop->signal ? 128 + stop->signal : 1;
         if (root) {
           fields.reset();
           leave_stopped_run(*directory, *stop, exit_code);

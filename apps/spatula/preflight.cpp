@@ -184,6 +184,32 @@ std::string prepare_resume(Scene& scene)
                                "); run the scene without --resume");
 }
 
+void set_stop_after_checkpoint(Scene& scene, double theta_y)
+{
+  const auto& loading = scene.loading;
+  std::ostringstream key;
+  key << "--stop-after-checkpoint " << theta_y;
+  const bool rotates = std::any_of(loading.stages.begin(), loading.stages.end(),
+                                   [](const Stage& s) { return s.kind == StageKind::rotate && s.checkpoints; });
+  const bool listed = std::any_of(loading.checkpoints.begin(), loading.checkpoints.end(),
+                                  [&](double c) { return checkpoint_label(c) == checkpoint_label(theta_y); });
+  if (!rotates || !listed) {
+    std::ostringstream allowed;
+    for (double c : loading.checkpoints) allowed << (allowed.tellp() > 0 ? ", " : "") << c;
+    throw parameters::InputError(
+        key.str() + ": " +
+        (!rotates ? std::string("the scene has no rotation that writes checkpoints")
+         : loading.checkpoints.empty() ? std::string("the scene's 'Loading/checkpoints at theta_y' is empty")
+                                       : "not one of the scene's 'Loading/checkpoints at theta_y' = " + allowed.str()) +
+        " (the inclinations [deg] where the rotation stops to write a checkpoint)");
+  }
+  if (scene.resume && holds_checkpoint(loading.restart_file, checkpoint_label(theta_y)))
+    throw parameters::InputError(key.str() + " with --resume: the stopped run has passed that inclination already (" +
+                                 loading.restart_file + " holds its checkpoint '" + checkpoint_label(theta_y) +
+                                 "'): take the checkpoint from there, or resume without the option");
+  scene.stop_after_checkpoint = theta_y;
+}
+
 std::string resumed_checkpoint_file(const Scene& scene)
 {
   return (std::filesystem::path(io::OutputDirectory::staging_path(scene.output.directory)) / "checkpoints.h5").string();

@@ -22,6 +22,11 @@ std::string prepare_resume(Scene& scene);
 // Where a resumed run's checkpoint lies once its directory is the staging directory again.
 std::string resumed_checkpoint_file(const Scene& scene);
 
+// For `--stop-after-checkpoint THETA`: sets Scene::stop_after_checkpoint once THETA is one of the inclinations where
+// the scene's rotation writes checkpoints and, for a resumed run (after prepare_resume), one it has not passed yet;
+// else throws parameters::InputError naming the option, the value and the inclinations allowed.
+void set_stop_after_checkpoint(Scene& scene, double theta_y);
+
 // `scene_file` is the scene's own file (empty for the embedded scene): the run must not replace it either.
 void check_output_directory(const Scene& scene, const std::string& scene_file);
 

@@ -98,6 +98,8 @@ private:
   double peak_moment_ = 0.0, peak_force_ = 0.0;
   clock::time_point last_checkpoint_ = clock::now();
   bool balance_warned_ = false;
+  std::optional<double> paused_at_;   // --stop-after-checkpoint: the inclination [deg] the run stopped at
+  bool paused() const { return paused_at_.has_value(); }
   bool out_of_memory_ = false;   // the load path stopped because an allocation failed (not a detachment)
 };
 

@@ -10,6 +10,7 @@
 
 #include <Teuchos_ParameterList.hpp>
 
+#include <optional>
 #include <string>
 
 namespace spatula::app {
@@ -37,6 +38,8 @@ struct Scene {
   solvers::NewtonParameters newton;
   JobParameters job;
   bool resume = false;                // go on with a stopped run (command line --resume): restart file = its state
+  // Stop once the rotation's checkpoint at this inclination [deg] is written (command line --stop-after-checkpoint)
+  std::optional<double> stop_after_checkpoint;
   Teuchos::ParameterList validated;   // the full list with defaults filled in (echoed to the output)
 };
 

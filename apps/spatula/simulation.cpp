@@ -277,7 +277,7 @@ std::optional<analysis::Failure> Run::follow_load_path(int& interrupted_by)
       const double target = stage.target + (stage.relative ? path_stage_.start : 0.0);
       bool detached = false;
       failure = follow_stage(stage, target, detached);
-      if (failure || detached) return failure;
+      if (failure || detached || paused()) return failure;
     }
   } catch (const Interrupted& signal) {
     cancel_watchdog();   // the converged state to stop at is reached
@@ -329,8 +329,16 @@ std::optional<analysis::Failure> Run::follow_stage(const Stage& stage, double ta
       return failure;
     }
     if (stage.kind == StageKind::rotate && stage.checkpoints &&
-        std::find(loading.checkpoints.begin(), loading.checkpoints.end(), stop) != loading.checkpoints.end())
+        std::find(loading.checkpoints.begin(), loading.checkpoints.end(), stop) != loading.checkpoints.end()) {
       write_checkpoint_at(stop);
+      // --stop-after-checkpoint: the run stops here, unless its path ends here anyway
+      const bool path_ends = stop == stops.back() && path_stage_.index + 1 == static_cast<int>(loading.stages.size());
+      if (scene_.stop_after_checkpoint && checkpoint_label(*scene_.stop_after_checkpoint) == checkpoint_label(stop) &&
+          !path_ends) {
+        paused_at_ = stop;
+        break;
+      }
+    }
   }
   path_.set_end_test(nullptr);
   return std::nullopt;
@@ -362,10 +370,11 @@ std::optional<Stop> Run::finish(std::optional<analysis::Failure> failure, int in
   if (root_) {
     print_solver_counts(out_, *model_, linear_, path_);
   }
-  if (!failure && !interrupted_by) return std::nullopt;
+  if (!failure && !interrupted_by && !paused()) return std::nullopt;
   // The last converged state, to go on from (spatula --resume, or Loading/restart from = last state).
   Stop stop;
   stop.signal = interrupted_by;
+  stop.paused = paused();
   stop.stage = stage().name;
   stop.moved = stage().master();
   stop.force = stage().force();
@@ -373,8 +382,18 @@ std::optional<Stop> Run::finish(std::optional<analysis::Failure> failure, int in
     failure->reason += "; the descent's state is checkpointed with the last state: a restart from it ('Loading/restart "
                        "from' = 'last state') with a larger 'Loading/Jump/maximum iterations' goes on from there";
   if (failure) stop.failure = *failure;
+  else if (paused())
+    stop.failure = analysis::Failure{last.step, load_of(last), 0.0,
+                                     "stopped as asked after writing the checkpoint '" + checkpoint_label(*paused_at_) +
+                                         "' (--stop-after-checkpoint)"};
   else stop.failure = analysis::Failure{last.step, load_of(last), 0.0, Interrupted(interrupted_by).what()};
-  write_last_state(path_.state(), last);   // collective
+  if (paused()) {   // the path goes on from a checkpoint inclination with a fresh step controller, as here
+    auto point = last;
+    point.step_control = analysis::StepControllerState{};
+    write_last_state(path_.state(), point);   // collective
+  } else {
+    write_last_state(path_.state(), last);   // collective
+  }
   stop.checkpointed = true;
   return stop;
 }

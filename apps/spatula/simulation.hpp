@@ -23,6 +23,7 @@ struct Stop {
   std::string stage = "rotation";    // the stage it stopped in (its name)
   discretization::Master moved = discretization::Master::rotation;   // what that stage moves (the load's unit)
   bool force = false;                // that stage moves the force on it [nN], not the motion
+  bool paused = false;               // stopped as asked after a checkpoint (--stop-after-checkpoint): exit 0
 };
 
 // The cell fields of each field state: tr(sigma) / E, and with a contact law that dissipates (adhesive friction) the

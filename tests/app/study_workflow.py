@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """The studies' Snakemake workflow (scripts/workflow/Snakefile) against run-study.py: the coarse Table 6 study's jobs
-(a run per scene, each pull-off after the rotation, the tables last); that study restored from results/ gives
-run-study.py's tables byte for byte; and the coarse rough study run afresh (inclined to 8 deg only) by the workflow,
-as `run-study.py --engine snakemake` starts it, gives the same curves (all but the wall clock) and tables as
-run-study.py's own runner. Skipped (exit 77) where snakemake is missing.
+(a run per scene, the rotation in parts up to each pull-off's checkpoint, each pull-off after its part, the tables
+last); that study restored from results/ gives run-study.py's tables byte for byte; the coarse rough study run afresh
+(inclined to 8 deg only) by the workflow, as `run-study.py --engine snakemake` starts it, gives the same curves (all
+but the wall clock) and tables as run-study.py's own runner; and a rotation run afresh in two parts meets the runner's
+one-go run. Skipped (exit 77) where snakemake is missing.
 
     study_workflow.py <spatula>"""
 import os
@@ -38,15 +39,22 @@ def run_study(study, work, *options):
 
 
 with tempfile.TemporaryDirectory() as root:
-    # The plan: five runs and the tables; each pull-off waits for the rotation's marker.
+    # The plan: five runs, the rotation in parts up to each pull-off's checkpoint, the tables; each pull-off waits
+    # for its checkpoint, each part for the one before.
     plan = workflow(root, 'table6', 'mesh=coarse', f'work={root}/plan', dry=True)
     text = plan.stdout + plan.stderr
-    runs = re.findall(r'wildcards: level=coarse, scene=([\w.-]+)', text)
+    jobs = [(b.split(':')[0], b) for b in re.split(r'\nrule ', text)[1:]]
+    runs = {re.search(r'scene=([\w.-]+)', b).group(1): b for rule, b in jobs if rule == 'run'}
     check(sorted(runs) == ['peel-rotation', 'pull-off-45', 'pull-off-60', 'pull-off-75', 'pull-off-90'],
-          f'the plan runs the Table 6 scenes: {runs}')
-    blocks = [b for b in text.split('rule run:') if 'scene=pull-off' in b.split('rule ')[0]]
-    check(len(blocks) == 4 and all('input: ' + f'{root}/plan/coarse/peel-rotation.complete' in b for b in blocks),
-          'each pull-off starts after the rotation')
+          f'the plan runs the Table 6 scenes: {sorted(runs)}')
+    parts = {re.search(r'theta=([\d.]+)', b).group(1): b for rule, b in jobs if rule == 'rotation_part'}
+    check(sorted(parts, key=float) == ['45', '60', '75', '90'], f'the rotation in parts to 45, 60, 75, 90 deg: {parts}')
+    checkpoint = f'{root}/plan/coarse/peel-rotation.checkpoint-' + '{}.h5'
+    check(all(f'input: {checkpoint.format(t)}' in runs[f'pull-off-{t}'] for t in (45, 60, 75, 90)),
+          "each pull-off starts once the rotation's part up to its inclination is done")
+    check(all(f'input: {checkpoint.format(a)}' in parts[b] for a, b in (('45', '60'), ('60', '75'), ('75', '90'))) and
+          'input:' not in parts['45'] and f'input: {checkpoint.format(90)}' in runs['peel-rotation'],
+          'each part goes on from the one before, the rest of the rotation from the last')
     check(re.search(r'table6\s+1', text) is not None, 'the tables are the last job')
 
     # Restored from results/: the same tables as run-study.py's.
@@ -66,5 +74,17 @@ with tempfile.TemporaryDirectory() as root:
         check(rows == others >= 3 and not differences, f"{scene}: the same curve as run-study.py's ({rows}, {others} "
               f'states; {differences[:3]})')
     check(tables(f'{root}/fresh') == tables(f'{root}/runner'), "the fresh study's tables are run-study.py's")
+
+    # A rotation run afresh in parts (to 47 deg: one part to its checkpoint at 45, then the rest) meets the one run in
+    # one go to the Newton tolerance (the parts refactor the tangent where the one-go run may reuse it).
+    override = 'peel-rotation:Loading/theta_y=47'
+    fresh = run_study('table4', f'{root}/parts', '--engine', 'snakemake', '--set', override)
+    part = os.path.join(root, 'parts', 'coarse', 'peel-rotation.checkpoint-45.h5')
+    check(fresh.returncode == 0 and os.path.exists(part), 'the rotation run in parts by the workflow')
+    check(run_study('table4', f'{root}/one-go', '--set', override).returncode == 0, 'the rotation run by run-study.py')
+    rows, others, differences = curve_differences(*(os.path.join(root, work, 'coarse', 'peel-rotation')
+                                                    for work in ('parts', 'one-go')), relative=1e-5)
+    check(rows == others >= 40 and not differences, f'the parts meet the one-go curve to 1e-5 ({rows}, {others} '
+          f'states; {differences[:3]})')
 
 finish('workflow: the plan, restored and fresh studies as run-study.py\'s')
