@@ -1,5 +1,5 @@
-"""Discretization error estimates from results on several mesh levels (Richardson extrapolation): used by the study
-runner's error bars (scripts/run-study.py) and checked on manufactured values by tests/app/richardson.py."""
+"""Discretization error estimates from results on several mesh levels (Richardson extrapolation): used by the
+studies' error bars (scripts/run-study.py) and checked on manufactured values by tests/app/richardson.py."""
 
 # In-plane element size of each level relative to the coarse mesh (in-plane factors 1, 4, 8: the paper's Table 3).
 ELEMENT_SIZE = {'coarse': 1.0, 'medium': 1.0 / 4.0, 'fine': 1.0 / 8.0}

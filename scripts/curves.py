@@ -1,4 +1,4 @@
-"""Reading the app's curve.csv files: used by the study runner and the benchmarks."""
+"""Reading the app's curve.csv files: used by the studies and the benchmarks."""
 import csv
 import os
 

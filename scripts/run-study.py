@@ -5,17 +5,17 @@
 
 studies: table4 (peel by rotation), table6 (pull-off at 45/60/75/90 deg, also Table 5), stiction, gamma-W (Table 7),
 gamma-L (Table 8), rough (Fig. 14), all (these: the paper's); shear (beyond the paper: pulls at angles with friction,
-on the coarse mesh unless --mesh says otherwise; with --docs it writes docs/shear.md). Runs use one MPI rank each,
-`--jobs` of them at once (both cores by default); pull-offs start as soon as the rotation run they start from has
-written their checkpoint (a copy of it, <scene>.restart.h5, is what they read). Progress: one line per converged
-step of every run (stage, theta_y or u_z, elapsed, an estimate of what remains). With `--engine snakemake` the
-Snakemake workflow (scripts/workflow/Snakefile) schedules the same runs instead, a job per run (a rotation in parts,
-each pull-off once its checkpoint is written); progress is Snakemake's count of jobs, each run's own in
-<work>/<level>/<scene>.log.
+on the coarse mesh unless --mesh says otherwise; with --docs it writes docs/shear.md). The runs are the Snakemake
+workflow's jobs (scripts/workflow/Snakefile), `--jobs` of them at once (both cores by default), one MPI rank each: a
+rotation that pull-offs start from runs in parts, up to each checkpoint they need, and each pull-off starts as soon
+as its checkpoint is written (a copy of it, <scene>.restart.h5, is what it reads). Progress: Snakemake's count of
+jobs done, and one line per converged step of every run (stage, theta_y or u_z, elapsed, an estimate of what
+remains; the app's own output in <work>/<level>/<scene>.log).
 
 Stopping and resuming: a study can be stopped at any moment (Ctrl-C, kill). Every run
 checkpoints its last converged state every few minutes (Output/checkpoint interval); the next `run-study.py` of the
-study goes on with each stopped run from there (`spatula --resume`) and repeats only the steps after the checkpoint.
+study goes on with each stopped run from there (`spatula --resume`) and repeats only the steps after the checkpoint
+(Snakemake's --rerun-incomplete).
 
 Mesh level: the scenes in xml/studies/ are written for the medium mesh and tables 4 and 6, the stiction pull-off (it
 restarts from the medium rotation) and the rough study run on it. The sweeps (gamma-W, gamma-L: six rotations and
@@ -41,13 +41,15 @@ complete run's curve, scene, log (and a rotation's checkpoints) are kept in resu
 them): a study on another machine or with an empty <work> restores them instead of running them again.
 
 This file is the command line; the work is in the package scripts/study/: scenes.py (the studies' scenes and the
---set overrides), archive.py (results/: archive, restore, carry), runner.py (running the scenes), runs.py (how a run
-stands), tables.py (the tables, with the paper's values in paper-values.csv) and figures.py.
+--set overrides), archive.py (results/: archive, restore, carry), single_run.py (one run, a workflow job), app.py and
+progress.py (the app as a job starts it and its progress lines), runs.py (how a run stands), tables.py (the tables,
+with the paper's values in paper-values.csv) and figures.py.
 """
 import argparse
 import json
 import os
 import shlex
+import shutil
 import subprocess
 import sys
 import time
@@ -57,7 +59,7 @@ from convergence import LEVELS  # noqa: E402
 from run_lock import DirectoryInUse  # noqa: E402
 from study.archive import ARCHIVE, STOPPED_SUFFIX, archive, archiving, linked_equal_area, restore  # noqa: E402
 from study.figures import field_pictures, plots  # noqa: E402
-from study.runner import APP, run_all  # noqa: E402
+from study.app import APP  # noqa: E402
 from study.runs import complete  # noqa: E402
 from study.scenes import DEPENDS, OVERRIDES, STUDIES, format_override, parse_override, planned_runs  # noqa: E402
 from study.glance import glance  # noqa: E402
@@ -77,10 +79,6 @@ def main():
     parser.add_argument('--no-run', action='store_true', help='only tabulate (and with --docs, document) the runs present')
     parser.add_argument('--scene', action='append', default=[], metavar='SCENE',
                         help="run only this scene of the study (repeat for more); the tables cover every run present")
-    parser.add_argument('--engine', choices=('runner', 'snakemake'), default='runner',
-                        help="who schedules the runs: this script's runner (default: it starts a pull-off as soon as "
-                             "the rotation has written its checkpoint) or the Snakemake workflow "
-                             "(scripts/workflow/Snakefile: a job per run, a rotation in parts, a pull-off once its part is done)")
     parser.add_argument('--carry', action='store_true',
                         help=f'keep the last checkpointed state of each run in results/<level>/<scene>'
                              f'{STOPPED_SUFFIX}/ as it goes (commit it), and resume the runs kept there')
@@ -100,8 +98,9 @@ def main():
         parser.error(f"--set names scene(s) not in study {arguments.study}: {', '.join(sorted(unknown))}")
     if arguments.carry and not archiving():
         parser.error('--carry keeps runs in results, which runs made with --set are not')
-    if arguments.carry and arguments.engine == 'snakemake':
-        parser.error('--carry is the runner\'s: with --engine snakemake a stopped run resumes in its --work directory')
+    if not arguments.no_run and not shutil.which('snakemake'):
+        sys.exit('run-study.py: snakemake not found: the studies run as its workflow (Debian package snakemake; '
+                 'scripts/install-dependencies.sh installs it); --no-run tabulates without it')
     if not os.path.exists(APP):
         sys.exit(f'{APP} not found: build first (bash scripts/build.sh)')
     runs = planned_runs(arguments.study, arguments.mesh)
@@ -122,10 +121,8 @@ def main():
             archive(arguments.work, level, scene)
     if arguments.no_run:
         failed = []
-    elif arguments.engine == 'snakemake':
-        failed = run_workflow(runs, arguments.work, arguments.jobs, arguments.mesh, arguments.set)
     else:
-        failed = run_all(runs, arguments.work, arguments.jobs, arguments.carry)
+        failed = run_workflow(runs, arguments.work, arguments.jobs, arguments.mesh, arguments.set, arguments.carry)
     if archiving():   # the tables cover every kept run, at every level (also those no study runs, as the fine
         # level's rotation from 60 deg, and the pull-off at 60 deg its Table 4 is joined to)
         restore(arguments.work, [(level, scene) for level in LEVELS if os.path.isdir(os.path.join(ARCHIVE, level))
@@ -163,7 +160,7 @@ def main():
     return 1 if failed else 0
 
 
-def run_workflow(runs, work, jobs, mesh, overrides):
+def run_workflow(runs, work, jobs, mesh, overrides, carrying=False):
     """Runs the (level, scene) pairs through the Snakemake workflow, `jobs` at once, a stopped one resumed (the
     workflow's job runs scripts/study/single_run.py); returns the failed ones (no marker of completion)."""
     work = os.path.abspath(work)
@@ -171,7 +168,8 @@ def run_workflow(runs, work, jobs, mesh, overrides):
     settings = [format_override(override) for override in overrides]
     command = (['snakemake', '-s', os.path.join(ROOT, 'scripts', 'workflow', 'Snakefile'), '-d', work, '--cores',
                 str(jobs), '--rerun-incomplete', '--keep-going'] + list(markers.values()) +
-               ['--config', f'work={work}', f'mesh={mesh or ""}', 'set=' + json.dumps(settings)])
+               ['--config', f'work={work}', f'mesh={mesh or ""}', 'set=' + json.dumps(settings),
+                f'carry={str(carrying).lower()}'])
     print('run-study: ' + ' '.join(shlex.quote(c) for c in command) + f'\n  (each run\'s progress: '
           f'{work}/<level>/<scene>.log)', flush=True)
     subprocess.call(command)

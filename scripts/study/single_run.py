@@ -1,9 +1,15 @@
 """One run of a study scene, as a workflow job runs it (scripts/workflow/Snakefile): restored from results/ where
 it is kept there, else the scene file written, the rotation's checkpoint copied for a pull-off, a stopped run
-resumed (`spatula --resume`), the app run with its ranks, and the complete run kept in results/.
+resumed (`spatula --resume`), the app run with its ranks (a line per converged step on the standard output: stage,
+theta_y or u_z, elapsed, what remains at the pace so far; the app's own output in <work>/<level>/<scene>.log), and
+the complete run kept in results/.
 
     python3 scripts/study/single_run.py --work DIR --level LEVEL --scene SCENE [--ranks N] [--launcher mpiexec|srun]
-        [--set [SCENE:]LIST/NAME=VALUE ...] [--stop-after THETA]
+        [--set [SCENE:]LIST/NAME=VALUE ...] [--stop-after THETA] [--carry]
+
+With --carry, the run's last checkpointed state (checkpoints, curve, scene, log; not its fields) is copied to
+results/<level>/<scene>.stopped/ each time the app writes it: commit that, and the same job on another machine
+resumes the run from there.
 
 With --stop-after, the rotation only up to its checkpoint at THETA deg (`spatula --stop-after-checkpoint`), the
 job that a pull-off from there waits for: its checkpoints file is copied to
@@ -13,35 +19,21 @@ Exit status: the app's (0: the run is complete in <work>/<level>/<scene>/, or wi
 copied)."""
 import argparse
 import os
+import re
 import shutil
+import signal
 import subprocess
 import sys
+import time
 
 import h5py
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from study.archive import archive, archiving, restore  # noqa: E402
-from study.runner import APP, RUN_ENVIRONMENT, copy_restart, resumable  # noqa: E402
+from study.app import APP, RUN_ENVIRONMENT, copy_restart, launch, memory_estimate_mb, resumable  # noqa: E402
+from study.archive import archive, archiving, carry, restore, restore_stopped  # noqa: E402
+from study.progress import progress, step_lines  # noqa: E402
 from study.runs import complete  # noqa: E402
 from study.scenes import DEPENDS, OVERRIDES, parse_override, scene_file, scene_parameter  # noqa: E402
-
-
-def launch(ranks, launcher):
-    """The command prefix that starts `ranks` ranks: none for one rank with mpiexec (the app alone)."""
-    if launcher == 'srun':
-        return ['srun', '--ntasks', str(ranks)]
-    if ranks == 1:
-        return []
-    return ['mpiexec', '-n', str(ranks)] + (['--allow-run-as-root'] if os.geteuid() == 0 else [])
-
-
-def memory_estimate_mb(xml, directory):
-    """The app's preflight estimate of the run's memory [MB] (`--validate-only`), or None."""
-    result = subprocess.run([APP, xml, '--validate-only'], cwd=directory, capture_output=True, text=True)
-    for line in result.stdout.splitlines():
-        if line.strip().startswith('memory estimate'):
-            return int(float(line.split()[2]) * 1024) + 1
-    return None
 
 
 def checkpoint_copy(work, level, scene, theta):
@@ -68,45 +60,73 @@ def written_checkpoints(directory, scene, theta):
     return None
 
 
-def run(work, level, scene, ranks=1, launcher='mpiexec', stop_after=None):
+def run(work, level, scene, ranks=1, launcher='mpiexec', stop_after=None, carrying=False):
     directory = os.path.join(work, level)
     os.makedirs(directory, exist_ok=True)
     if archiving() and restore(work, [(level, scene)]):
         print(f'[{level} {scene}] restored from results/ (complete)', flush=True)
+    if carrying and restore_stopped(work, [(level, scene)]):
+        print(f'[{level} {scene}] stopped run restored from results/{level}/{scene}.stopped/', flush=True)
     if stop_after is not None:
-        return run_part(work, level, scene, stop_after, ranks, launcher)
+        return run_part(work, level, scene, stop_after, ranks, launcher, carrying)
     if complete(directory, scene):
         return 0
     dependency = DEPENDS.get(scene)
     if dependency:   # the rotation's checkpoint the pull-off starts from (a file dependency of the workflow)
         theta = float(scene_parameter(scene, 'restart theta_y'))
         copy_restart(directory, scene, checkpoint_copy(work, level, dependency, theta))
-    status = run_app(directory, level, scene, ranks, launcher)
+    status = run_app(directory, level, scene, ranks, launcher, carrying=carrying)
     if status == 0 and archiving() and complete(directory, scene):
         archive(work, level, scene)
     print(f'[{level} {scene}] ' + ('done' if status == 0 else f'failed (exit {status})'), flush=True)
     return status
 
 
-def run_app(directory, level, scene, ranks, launcher, options=()):
-    """Runs the app on the scene (resuming a stopped run of it); returns its exit status."""
+def run_app(directory, level, scene, ranks, launcher, options=(), carrying=False):
+    """Runs the app on the scene (resuming a stopped run of it), a progress line per converged step, and with
+    `carrying` its last checkpointed state kept in results/<level>/<scene>.stopped/ as it goes; returns the app's
+    exit status. Interrupted (Ctrl-C), the app stops at its next converged state and checkpoints it: waited for."""
     xml = scene_file(directory, level, scene)
     resume = resumable(directory, xml)
-    with open(os.path.join(directory, scene + '.log'), 'a' if resume else 'w') as log:
+    log_path = os.path.join(directory, scene + '.log')
+    seen = len(step_lines(log_path)) if resume else 0   # the lines a stopped run showed are not shown again
+    work = os.path.dirname(directory)
+    origin, carried = {}, {}
+    with open(log_path, 'a' if resume else 'w') as log:
         print(f'[{level} {scene}] ' + ('resumed from its last checkpoint' if resume else 'started') +
               (f' ({" ".join(options)})' if options else ''), flush=True)
         command = launch(ranks, launcher) + [APP, xml] + (['--resume'] if resume else []) + list(options)
-        return subprocess.run(command, cwd=directory, stdout=log, stderr=subprocess.STDOUT,
-                              env=RUN_ENVIRONMENT).returncode
+        process = subprocess.Popen(command, cwd=directory, stdout=log, stderr=subprocess.STDOUT, env=RUN_ENVIRONMENT)
+        started = time.time()
+        while True:
+            try:
+                ended = process.wait(timeout=2) is not None
+            except subprocess.TimeoutExpired:
+                ended = False
+            except KeyboardInterrupt:
+                process.send_signal(signal.SIGINT)
+                process.wait()
+                ended = True
+            steps = step_lines(log_path)
+            for line in steps[seen:]:
+                wall = re.search(r'([\d.]+) s$', line.strip())
+                print(progress(work, (level, scene), line, float(wall.group(1)) if wall else time.time() - started,
+                               origin), flush=True)
+            seen = len(steps)
+            if carrying:
+                carry(work, level, scene, carried)
+            if ended:
+                return process.returncode
 
 
-def run_part(work, level, scene, theta, ranks, launcher):
+def run_part(work, level, scene, theta, ranks, launcher, carrying):
     """The rotation up to its checkpoint at theta (unless it has passed it), that checkpoint's file copied out."""
     directory = os.path.join(work, level)
     copy = checkpoint_copy(work, level, scene, theta)
     source = written_checkpoints(directory, scene, theta)
     if not source:
-        status = run_app(directory, level, scene, ranks, launcher, ['--stop-after-checkpoint', f'{theta:g}'])
+        status = run_app(directory, level, scene, ranks, launcher, ['--stop-after-checkpoint', f'{theta:g}'],
+                         carrying)
         if status != 0:
             print(f'[{level} {scene}] failed (exit {status}) on its way to theta_y = {theta:g} deg', flush=True)
             return status
@@ -132,6 +152,9 @@ def main():
     parser.add_argument('--launcher', choices=('mpiexec', 'srun'), default='mpiexec')
     parser.add_argument('--set', action='append', type=parse_override, default=[])
     parser.add_argument('--memory', action='store_true', help="print the preflight's memory estimate [MB] and exit")
+    parser.add_argument('--carry', action='store_true',
+                        help='keep the last checkpointed state of the run in results/<level>/<scene>.stopped/ as it '
+                             'goes (commit it), and resume a run kept there')
     parser.add_argument('--stop-after', type=float, metavar='THETA',
                         help="the rotation only up to its checkpoint at THETA deg, that checkpoint's file copied out")
     arguments = parser.parse_args()
@@ -142,8 +165,10 @@ def main():
         scene = DEPENDS.get(arguments.scene, arguments.scene)
         print(memory_estimate_mb(scene_file(directory, arguments.level, scene), directory) or 0)
         return 0
+    if arguments.carry and not archiving():
+        parser.error('--carry keeps runs in results, which runs made with --set are not')
     return run(arguments.work, arguments.level, arguments.scene, arguments.ranks, arguments.launcher,
-               arguments.stop_after)
+               arguments.stop_after, arguments.carry)
 
 
 if __name__ == '__main__':

@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """The studies' Snakemake workflow (scripts/workflow/Snakefile) against run-study.py: the coarse Table 6 study's jobs
 (a run per scene, the rotation in parts up to each pull-off's checkpoint, each pull-off after its part, the tables
-last); that study restored from results/ gives run-study.py's tables byte for byte; the coarse rough study run afresh
-(inclined to 8 deg only) by the workflow, as `run-study.py --engine snakemake` starts it, gives the same curves (all
-but the wall clock) and tables as run-study.py's own runner; and a rotation run afresh in two parts meets the runner's
-one-go run. Skipped (exit 77) where snakemake is missing.
+last); that study restored from results/ gives run-study.py --no-run's tables byte for byte; the coarse rough study
+run afresh (inclined to 8 deg only) by run-study.py, which hands its runs to the workflow, shows a progress line per
+converged step and gives the same curves (all but the wall clock) as the app run directly on each job's scene file;
+and a rotation run afresh in two parts meets the app's run in one go. Skipped (exit 77) where snakemake is missing.
 
     study_workflow.py <spatula>"""
 import os
@@ -31,6 +31,16 @@ def workflow(directory, target, *config, dry=False):
     command = [SNAKEMAKE, '-s', os.path.join(ROOT, 'scripts', 'workflow', 'Snakefile'), '-d', directory,
                '--cores', '2', target] + (['-n'] if dry else []) + ['--config'] + list(config)
     return shown(subprocess.run(command, capture_output=True, text=True))
+
+
+def direct_run(scene_xml, directory):
+    """The app run on a job's scene file in `directory` (one rank, as the jobs): its output directory."""
+    os.makedirs(directory, exist_ok=True)
+    shutil.copyfile(scene_xml, os.path.join(directory, os.path.basename(scene_xml)))
+    environment = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
+    subprocess.run([os.environ['SPATULA_APP'], os.path.basename(scene_xml)], cwd=directory, env=environment,
+                   capture_output=True)
+    return os.path.join(directory, os.path.basename(scene_xml)[:-len('.xml')])
 
 
 def run_study(study, work, *options):
@@ -62,29 +72,31 @@ with tempfile.TemporaryDirectory() as root:
     check(run_study('table6', f'{root}/tabulated', '--no-run').returncode == 0, 'run-study.py --no-run')
     check(tables(f'{root}/restored') == tables(f'{root}/tabulated'), "the restored study's tables are run-study.py's")
 
-    # Run afresh: the same curves and tables as run-study.py's runs.
+    # Run afresh by run-study.py (the workflow): the same curves as the app run directly on each job's scene file,
+    # and a progress line per converged step of every run.
     override = 'Loading/theta_y=8'
-    fresh = run_study('rough', f'{root}/fresh', '--engine', 'snakemake', '--set', override)
-    check(fresh.returncode == 0 and '3 of 3 steps (100%) done' in fresh.stdout + fresh.stderr,
-          'the rough study run by the workflow (run-study.py --engine snakemake)')
-    check(run_study('rough', f'{root}/runner', '--set', override).returncode == 0, 'the rough study run by run-study.py')
+    fresh = run_study('rough', f'{root}/fresh', '--set', override)
+    output = fresh.stdout + fresh.stderr
+    check(fresh.returncode == 0 and '3 of 3 steps (100%) done' in output, 'the rough study run by run-study.py')
+    check(all(re.search(rf'\[coarse {s}\] step 3 rotation theta_y = ', output) for s in ('rough-z0-0', 'rough-z0-8')),
+          'a progress line per converged step of each run')
     for scene in ('rough-z0-0', 'rough-z0-4', 'rough-z0-8'):
-        rows, others, differences = curve_differences(*(os.path.join(root, work, 'coarse', scene)
-                                                        for work in ('fresh', 'runner')))
-        check(rows == others >= 3 and not differences, f"{scene}: the same curve as run-study.py's ({rows}, {others} "
-              f'states; {differences[:3]})')
-    check(tables(f'{root}/fresh') == tables(f'{root}/runner'), "the fresh study's tables are run-study.py's")
+        rows, others, differences = curve_differences(os.path.join(root, 'fresh', 'coarse', scene),
+                                                      direct_run(os.path.join(root, 'fresh', 'coarse', scene + '.xml'),
+                                                                 f'{root}/direct'))
+        check(rows == others >= 3 and not differences, f"{scene}: the same curve as the app's own run ({rows}, "
+              f'{others} states; {differences[:3]})')
 
-    # A rotation run afresh in parts (to 47 deg: one part to its checkpoint at 45, then the rest) meets the one run in
-    # one go to the Newton tolerance (the parts refactor the tangent where the one-go run may reuse it).
+    # A rotation run afresh in parts (to 47 deg: one part to its checkpoint at 45, then the rest) meets the app's run
+    # in one go to the Newton tolerance (the parts factor the tangent anew where the one-go run may reuse one).
     override = 'peel-rotation:Loading/theta_y=47'
-    fresh = run_study('table4', f'{root}/parts', '--engine', 'snakemake', '--set', override)
+    fresh = run_study('table4', f'{root}/parts', '--set', override)
     part = os.path.join(root, 'parts', 'coarse', 'peel-rotation.checkpoint-45.h5')
     check(fresh.returncode == 0 and os.path.exists(part), 'the rotation run in parts by the workflow')
-    check(run_study('table4', f'{root}/one-go', '--set', override).returncode == 0, 'the rotation run by run-study.py')
-    rows, others, differences = curve_differences(*(os.path.join(root, work, 'coarse', 'peel-rotation')
-                                                    for work in ('parts', 'one-go')), relative=1e-5)
+    rows, others, differences = curve_differences(
+        os.path.join(root, 'parts', 'coarse', 'peel-rotation'),
+        direct_run(os.path.join(root, 'parts', 'coarse', 'peel-rotation.xml'), f'{root}/one-go'), relative=1e-5)
     check(rows == others >= 40 and not differences, f'the parts meet the one-go curve to 1e-5 ({rows}, {others} '
           f'states; {differences[:3]})')
 
-finish('workflow: the plan, restored and fresh studies as run-study.py\'s')
+finish('workflow: the plan, restored and fresh studies as the app\'s own runs')
