@@ -11,13 +11,13 @@ from study.scenes import scene_parameter
 
 def target(scene):
     """(stage, final value) the scene's loading ends at: the rotation's theta_y, or the lift's final u_z (relative);
-    (None, None) for a path of stages."""
+    (None, None) for a path of stages or a pull at an angle (no estimate of what remains)."""
     kind = scene_parameter(scene, 'type')
     if kind == 'rotation':
         return 'rotation', float(scene_parameter(scene, 'theta_y'))
-    if kind == 'lift':
+    if kind == 'lift' and float(scene_parameter(scene, 'pull angle') or 90) == 90:
         return 'lift', float(scene_parameter(scene, 'final lift'))
-    return None, None
+    return None, None   # (a pull at an angle: its final travel is along the pull, the log shows u_z)
 
 
 def progress(work, run, line, elapsed, origin):
