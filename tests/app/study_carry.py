@@ -2,7 +2,7 @@
 """run-study.py --carry, on manufactured run directories: a running run's checkpoints, curve, scene and log are kept in
 the archive's <scene>.stopped/ (not its fields), again only when its checkpoints file changed; a new work directory
 gets the kept run back as a stopped run (<scene>.incomplete/ and its log) for `spatula --resume`, but not over a run
-it already has.
+it already has; a workflow job with --carry keeps the state its app checkpoints while it runs.
 
     study_carry.py"""
 import os
@@ -70,5 +70,23 @@ with tempfile.TemporaryDirectory() as root:
     study.carry(os.path.join(root, 'nowhere'), 'fine', 'rough-z0-4', carried)
     check(not os.path.exists(os.path.join(study.ARCHIVE, 'fine', 'rough-z0-4' + study.STOPPED_SUFFIX + '.copying')),
           'a half-copied carried state left')
+
+    # A workflow job with --carry (single_run.run_app): the state its app checkpoints while it runs is kept, and the
+    # job shows the app's step lines. The app here is a stand-in that checkpoints between two steps.
+    from study import single_run
+    fake = os.path.join(root, 'fake-spatula')
+    write(fake, '#!/bin/sh\ncase "$*" in *--validate-only*) exit 1;; esac\n'
+                'echo "step 1     rotation  theta_y 6.000    deg  u_z 1.0       nm  newton 2  neg.piv 0  1.0 s"\n'
+                'mkdir -p rough-z0-0.partial && echo "state 3" > rough-z0-0.partial/checkpoints.h5\nsleep 3\n'
+                'echo "step 2     rotation  theta_y 8.000    deg  u_z 2.0       nm  newton 2  neg.piv 0  4.0 s"\n')
+    os.chmod(fake, 0o755)
+    single_run.APP = fake
+    directory = os.path.join(root, 'job', 'coarse')
+    os.makedirs(directory)
+    status = single_run.run_app(directory, 'coarse', 'rough-z0-0', 1, 'mpiexec', carrying=True)
+    kept = os.path.join(study.ARCHIVE, 'coarse', 'rough-z0-0' + study.STOPPED_SUFFIX, 'checkpoints.h5')
+    check(status == 0 and os.path.exists(kept) and open(kept).read() == 'state 3\n',
+          f'a job with --carry: exit {status}, kept {os.path.exists(kept)}')
+    check('step 2' in open(os.path.join(directory, 'rough-z0-0.log')).read(), "the app's output in the run's log")
 
 finish('study_carry: stopped runs kept without fields when checkpointed, restored for --resume on a new machine')
