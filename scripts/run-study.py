@@ -57,7 +57,8 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from convergence import LEVELS  # noqa: E402
 from run_lock import DirectoryInUse  # noqa: E402
-from study.archive import ARCHIVE, STOPPED_SUFFIX, archive, archiving, linked_equal_area, restore  # noqa: E402
+from study.archive import (ARCHIVE, ENDED_SUFFIX, STOPPED_SUFFIX, archive, archiving, linked_equal_area,  # noqa: E402
+                           restore, restore_ended)
 from study.figures import field_pictures, plots  # noqa: E402
 from study.app import APP  # noqa: E402
 from study.runs import complete  # noqa: E402
@@ -125,10 +126,12 @@ def main():
         failed = run_workflow(runs, arguments.work, arguments.jobs, arguments.mesh, arguments.set, arguments.carry)
     if archiving():   # the tables cover every kept run, at every level (also those no study runs, as the fine
         # level's rotation from 60 deg, and the pull-off at 60 deg its Table 4 is joined to)
-        restore(arguments.work, [(level, scene) for level in LEVELS if os.path.isdir(os.path.join(ARCHIVE, level))
-                                 for scene in sorted(os.listdir(os.path.join(ARCHIVE, level)))
-                                 if not scene.endswith((STOPPED_SUFFIX, STOPPED_SUFFIX + '.copying',
-                                                        STOPPED_SUFFIX + '.old'))])
+        kept = [(level, name) for level in LEVELS if os.path.isdir(os.path.join(ARCHIVE, level))
+                for name in sorted(os.listdir(os.path.join(ARCHIVE, level)))]
+        restore(arguments.work, [(level, name) for level, name in kept if not name.endswith(
+            (STOPPED_SUFFIX, STOPPED_SUFFIX + '.copying', STOPPED_SUFFIX + '.old', ENDED_SUFFIX, ENDED_SUFFIX + '.copying'))])
+        restore_ended(arguments.work, [(level, name[:-len(ENDED_SUFFIX)]) for level, name in kept
+                                       if name.endswith(ENDED_SUFFIX)])   # the runs the app ended, as they ended
     print(f'study {arguments.study}: {len(runs) - len(failed)} of {len(runs)} runs complete in '
           f'{time.time() - started:.0f} s' + (f'; failed: {", ".join(" ".join(f) for f in failed)}' if failed else ''),
           flush=True)

@@ -1,5 +1,6 @@
 """The kept runs (results/<level>/<scene>/): a complete run archived and restored, a run still going carried as
-<scene>.stopped/ and restored as a stopped run for `spatula --resume`."""
+<scene>.stopped/ and restored as a stopped run for `spatula --resume`, a run the app ended with a solver failure kept
+as <scene>.incomplete/ and restored as it ended."""
 import os
 import re
 import shutil
@@ -40,6 +41,7 @@ def archive(work, level, scene, kept_as=None):
     if os.path.exists(log):
         shutil.copyfile(log, os.path.join(kept, 'run.log'))
     shutil.rmtree(kept + STOPPED_SUFFIX, ignore_errors=True)   # a carried stopped state of it is no longer needed
+    shutil.rmtree(kept + ENDED_SUFFIX, ignore_errors=True)     # nor how an earlier run of it ended
 
 
 def put_back(kept, target_directory, log):
@@ -122,6 +124,56 @@ def restore_stopped(work, runs):
             continue
         target_directory = os.path.join(directory, scene + '.incomplete')
         put_back(kept, target_directory, os.path.join(directory, scene + '.log'))
+        restored.append((level, scene))
+    return restored
+
+
+# A run the app ended with a solver failure (exit 1, its diagnosis in FAILURE.txt and the log: no stable state after
+# a jump, say) is kept in ARCHIVE/<level>/<scene>.incomplete/ with its curve up to the last converged state, so that a
+# study's tables (the shear study's stopped pulls) can be made from ARCHIVE alone. It is restored as it ended, not
+# run again (it would end the same way): remove the kept directory to run it again.
+ENDED_SUFFIX = '.incomplete'
+ENDED_FILES = KEPT_FILES + ('FAILURE.txt',)
+
+
+def ended_by_the_path(log_text):
+    """Whether the app's log ends its run with a solver failure of the load path itself (not one of the machine's:
+    memory, the file system, a signal), which a run of the same scene would meet again."""
+    failures = [l for l in log_text.splitlines() if l.startswith(('spatula: solver failure', 'spatula: error',
+                                                                  'spatula: interrupted'))]
+    return bool(failures) and failures[-1].startswith('spatula: solver failure') and 'memory' not in failures[-1]
+
+
+def archive_ended(work, level, scene):
+    """Keeps the ended run <work>/<level>/<scene>.incomplete/ (its curve, scene, summaries, FAILURE.txt and log, not
+    its checkpoints or fields) in ARCHIVE/<level>/<scene>.incomplete/ if the load path ended it; returns whether it
+    did."""
+    source, kept = os.path.join(work, level, scene + ENDED_SUFFIX), os.path.join(ARCHIVE, level, scene + ENDED_SUFFIX)
+    log = os.path.join(work, level, scene + '.log')
+    if not os.path.exists(os.path.join(source, 'curve.csv')) or not os.path.exists(os.path.join(source, 'FAILURE.txt')) \
+            or not os.path.exists(log) or not ended_by_the_path(open(log).read()):
+        return False
+    shutil.rmtree(kept + '.copying', ignore_errors=True)
+    os.makedirs(kept + '.copying')
+    for name in ENDED_FILES:
+        if os.path.exists(os.path.join(source, name)):
+            shutil.copyfile(os.path.join(source, name), os.path.join(kept + '.copying', name))
+    shutil.copyfile(log, os.path.join(kept + '.copying', 'run.log'))
+    shutil.rmtree(kept, ignore_errors=True)
+    os.replace(kept + '.copying', kept)
+    return True
+
+
+def restore_ended(work, runs):
+    """Puts the kept ended runs among `runs` that <work> has in no form back as <work>/<level>/<scene>.incomplete/
+    with their log; returns them."""
+    restored = []
+    for level, scene in runs:
+        kept, directory = os.path.join(ARCHIVE, level, scene + ENDED_SUFFIX), os.path.join(work, level)
+        if not os.path.exists(os.path.join(kept, 'curve.csv')) or complete(directory, scene) or any(
+                os.path.exists(os.path.join(directory, scene + suffix)) for suffix in ('.partial', '.incomplete')):
+            continue
+        put_back(kept, os.path.join(directory, scene + ENDED_SUFFIX), os.path.join(directory, scene + '.log'))
         restored.append((level, scene))
     return restored
 

@@ -30,7 +30,8 @@ import h5py
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from study.app import APP, RUN_ENVIRONMENT, copy_restart, launch, memory_estimate_mb, resumable  # noqa: E402
-from study.archive import archive, archiving, carry, restore, restore_stopped  # noqa: E402
+from study.archive import (archive, archive_ended, archiving, carry, restore, restore_ended,  # noqa: E402
+                           restore_stopped)
 from study.progress import progress, step_lines  # noqa: E402
 from study.runs import complete  # noqa: E402
 from study.scenes import DEPENDS, OVERRIDES, parse_override, scene_file, scene_parameter  # noqa: E402
@@ -67,6 +68,10 @@ def run(work, level, scene, ranks=1, launcher='mpiexec', stop_after=None, carryi
         print(f'[{level} {scene}] restored from results/ (complete)', flush=True)
     if carrying and restore_stopped(work, [(level, scene)]):
         print(f'[{level} {scene}] stopped run restored from results/{level}/{scene}.stopped/', flush=True)
+    if archiving() and restore_ended(work, [(level, scene)]):   # it would end the same way again
+        print(f'[{level} {scene}] restored from results/{level}/{scene}.incomplete/ as it ended (a solver failure, '
+              f'see its FAILURE.txt; remove that directory to run it again)', flush=True)
+        return 1
     if stop_after is not None:
         return run_part(work, level, scene, stop_after, ranks, launcher, carrying)
     if complete(directory, scene):
@@ -78,6 +83,8 @@ def run(work, level, scene, ranks=1, launcher='mpiexec', stop_after=None, carryi
     status = run_app(directory, level, scene, ranks, launcher, carrying=carrying)
     if status == 0 and archiving() and complete(directory, scene):
         archive(work, level, scene)
+    if status == 1 and archiving() and archive_ended(work, level, scene):
+        print(f'[{level} {scene}] ended with a solver failure: kept in results/{level}/{scene}.incomplete/', flush=True)
     print(f'[{level} {scene}] ' + ('done' if status == 0 else f'failed (exit {status})'), flush=True)
     return status
 

@@ -2,7 +2,8 @@
 """run-study.py --carry, on manufactured run directories: a running run's checkpoints, curve, scene and log are kept in
 the archive's <scene>.stopped/ (not its fields), again only when its checkpoints file changed; a new work directory
 gets the kept run back as a stopped run (<scene>.incomplete/ and its log) for `spatula --resume`, but not over a run
-it already has; a workflow job with --carry keeps the state its app checkpoints while it runs.
+it already has; a workflow job with --carry keeps the state its app checkpoints while it runs; a run its load path
+ended (a solver failure) is kept and restored as it ended.
 
     study_carry.py"""
 import os
@@ -88,5 +89,31 @@ with tempfile.TemporaryDirectory() as root:
     check(status == 0 and os.path.exists(kept) and open(kept).read() == 'state 3\n',
           f'a job with --carry: exit {status}, kept {os.path.exists(kept)}')
     check('step 2' in open(os.path.join(directory, 'rough-z0-0.log')).read(), "the app's output in the run's log")
+
+    # A run the app ended with a solver failure of its load path: kept with its curve, FAILURE.txt and log (not its
+    # checkpoints), restored as it ended instead of being run again; not one a signal or the memory ended.
+    ended = os.path.join(work, 'coarse', 'shear-x.incomplete')
+    for name, text in (('curve.csv', 'rows to the failure'), ('FAILURE.txt', 'why'), ('checkpoints.h5', 'big'),
+                       ('.spatula-output', 'ours')):
+        write(os.path.join(ended, name), text)
+    diagnosis = 'spatula: solver failure at step 9, lift = 3: the jump past the instability failed (kept 26 %)\n'
+    for case, log, keep in (('a signal', 'spatula: interrupted at step 9, lift = 3: interrupted by SIGTERM\n', False),
+                            ('the memory', 'spatula: solver failure at step 9: out of memory; the job allows less '
+                                           'memory than this mesh and solver need\n', False),
+                            ('the load path', diagnosis, True)):
+        write(os.path.join(work, 'coarse', 'shear-x.log'), 'step 9 ...\n' + log)
+        check(study.archive_ended(work, 'coarse', 'shear-x') == keep, f'a run ended by {case} kept: {not keep}')
+    kept = os.path.join(study.ARCHIVE, 'coarse', 'shear-x' + study.ENDED_SUFFIX)
+    check(sorted(os.listdir(kept)) == ['.spatula-output', 'FAILURE.txt', 'curve.csv', 'run.log'],
+          f'an ended run kept: {sorted(os.listdir(kept))}')
+    again = os.path.join(root, 'again')
+    check(single_run.run(again, 'coarse', 'shear-x') == 1 and open(os.path.join(again, 'coarse', 'shear-x.incomplete',
+                                                                                'curve.csv')).read()
+          == 'rows to the failure' and 'jump past the instability failed' in open(os.path.join(
+              again, 'coarse', 'shear-x.log')).read(), 'the ended run restored as it ended, its job failed, not run')
+    check(study.restore_ended(again, [('coarse', 'shear-x')]) == [], 'restored over the run the work directory has')
+    write(os.path.join(work, 'coarse', 'shear-x', 'curve.csv'), 'complete')
+    study.archive(work, 'coarse', 'shear-x')
+    check(not os.path.exists(kept), 'the ended run kept after the scene was archived complete')
 
 finish('study_carry: stopped runs kept without fields when checkpointed, restored for --resume on a new machine')
