@@ -116,14 +116,19 @@ def carry(work, level, scene, carried):
 def restore_stopped(work, runs):
     """Puts the carried stopped runs among `runs` that <work> has neither complete nor stopped back into <work> as
     stopped runs (<scene>.incomplete/, which `spatula --resume` goes on from); returns them."""
+    return put_back_as_stopped(work, runs, STOPPED_SUFFIX, 'checkpoints.h5')
+
+
+def put_back_as_stopped(work, runs, suffix, needed):
+    """Puts ARCHIVE/<level>/<scene><suffix>/ (where it holds `needed`) back as <work>/<level>/<scene>.incomplete/ with
+    its log, for the runs among `runs` that <work> has in no form; returns them."""
     restored = []
     for level, scene in runs:
-        kept, directory = os.path.join(ARCHIVE, level, scene + STOPPED_SUFFIX), os.path.join(work, level)
-        if not os.path.exists(os.path.join(kept, 'checkpoints.h5')) or complete(directory, scene) or any(
-                os.path.exists(os.path.join(directory, scene + suffix)) for suffix in ('.partial', '.incomplete')):
+        kept, directory = os.path.join(ARCHIVE, level, scene + suffix), os.path.join(work, level)
+        if not os.path.exists(os.path.join(kept, needed)) or complete(directory, scene) or any(
+                os.path.exists(os.path.join(directory, scene + s)) for s in ('.partial', '.incomplete')):
             continue
-        target_directory = os.path.join(directory, scene + '.incomplete')
-        put_back(kept, target_directory, os.path.join(directory, scene + '.log'))
+        put_back(kept, os.path.join(directory, scene + '.incomplete'), os.path.join(directory, scene + '.log'))
         restored.append((level, scene))
     return restored
 
@@ -167,15 +172,7 @@ def archive_ended(work, level, scene):
 def restore_ended(work, runs):
     """Puts the kept ended runs among `runs` that <work> has in no form back as <work>/<level>/<scene>.incomplete/
     with their log; returns them."""
-    restored = []
-    for level, scene in runs:
-        kept, directory = os.path.join(ARCHIVE, level, scene + ENDED_SUFFIX), os.path.join(work, level)
-        if not os.path.exists(os.path.join(kept, 'curve.csv')) or complete(directory, scene) or any(
-                os.path.exists(os.path.join(directory, scene + suffix)) for suffix in ('.partial', '.incomplete')):
-            continue
-        put_back(kept, os.path.join(directory, scene + ENDED_SUFFIX), os.path.join(directory, scene + '.log'))
-        restored.append((level, scene))
-    return restored
+    return put_back_as_stopped(work, runs, ENDED_SUFFIX, 'curve.csv')
 
 
 # The paper's studies on the equal-area sequence (convergence.EQUAL_AREA_SIZE: coarse refined 2 x 2 and 3 x 3, and
