@@ -272,11 +272,13 @@ def fine_pull_off_60(work):
                                              lift_maximum=AFTER_SCENE['lift maximum'], fields=0,
                                              jump={'refactor': 'cost'}, checkpoint_minutes=5))
     done = os.path.isdir(os.path.join(work, FINE_60))
-    if os.path.isdir(os.path.join(work, FINE_60 + '.incomplete')):
+    logs = sorted((f for f in os.listdir(work) if re.fullmatch(FINE_60 + r'\.segment-\d+\.log', f)),
+                  key=lambda f: int(re.search(r'(\d+)\.log$', f).group(1)))
+    interrupted = bool(logs) and 'interrupted by SIG' in open(os.path.join(work, logs[-1])).read()
+    if os.path.isdir(os.path.join(work, FINE_60 + '.incomplete')) and not interrupted:   # (a signal's stop resumes)
         sys.exit(f'{FINE_60}: the run failed (see {work}/{FINE_60}.incomplete/FAILURE.txt)')
-    logs = sorted(f for f in os.listdir(work) if re.fullmatch(FINE_60 + r'\.segment-\d+\.log', f))
     if not done:
-        resume = os.path.isdir(os.path.join(work, FINE_60 + '.partial'))
+        resume = any(os.path.isdir(os.path.join(work, FINE_60 + suffix)) for suffix in ('.partial', '.incomplete'))
         log_path = os.path.join(work, f'{FINE_60}.segment-{len(logs) + 1}.log')
         print(f'{FINE_60}: segment {len(logs) + 1} ({"resumed" if resume else "from the start"}), log {log_path}',
               flush=True)
