@@ -344,13 +344,9 @@ std::optional<Stop> Run::finish(std::optional<analysis::Failure> failure, int in
                                      "stopped as asked after writing the checkpoint '" + checkpoint_label(*paused_at_) +
                                          "' (--stop-after-checkpoint)"};
   else stop.failure = analysis::Failure{last.step, load_of(last), 0.0, Interrupted(interrupted_by).what()};
-  if (paused()) {   // the path goes on from a checkpoint inclination with a fresh step controller, as here
-    auto point = last;
-    point.step_control = analysis::StepControllerState{};
-    write_last_state(path_.state(), point);   // collective
-  } else {
-    write_last_state(path_.state(), last);   // collective
-  }
+  auto point = last;   // after a pause the path goes on from a checkpoint inclination with a fresh step controller
+  if (paused()) point.step_control = analysis::StepControllerState{};
+  write_last_state(path_.state(), point);   // collective
   stop.checkpointed = true;
   return stop;
 }

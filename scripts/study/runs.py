@@ -30,3 +30,9 @@ def outcome(work, scene):
 def started(work, scene):
     """Complete, or stopped with the curve up to its last converged state in <scene>.incomplete/."""
     return complete(work, scene) or os.path.exists(os.path.join(work, scene + '.incomplete', 'curve.csv'))
+
+
+def checkpoint_copy(work, level, rotation, theta):
+    """The file the rotation's part up to its checkpoint at theta [deg] leaves (a workflow job's output): its
+    checkpoints, the one at theta among them."""
+    return os.path.join(work, level, f'{rotation}.checkpoint-{theta:g}.h5')

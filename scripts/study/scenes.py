@@ -108,6 +108,11 @@ def scene_parameter(scene, name):
     return match.group(1) if match else None
 
 
+def restart_angle(scene):
+    """The inclination [deg] of the rotation's checkpoint a pull-off starts from."""
+    return float(scene_parameter(scene, 'restart theta_y'))
+
+
 def scene_level(scene):
     return scene_parameter(scene, 'level')
 

@@ -33,13 +33,8 @@ from study.app import APP, RUN_ENVIRONMENT, copy_restart, launch, memory_estimat
 from study.archive import (archive, archive_ended, archiving, carry, restore, restore_ended,  # noqa: E402
                            restore_stopped)
 from study.progress import progress, step_lines  # noqa: E402
-from study.runs import complete  # noqa: E402
-from study.scenes import DEPENDS, OVERRIDES, parse_override, scene_file, scene_parameter  # noqa: E402
-
-
-def checkpoint_copy(work, level, scene, theta):
-    """Where the part of rotation `scene` up to its checkpoint at theta [deg] leaves that checkpoint."""
-    return os.path.join(work, level, f'{scene}.checkpoint-{theta:g}.h5')
+from study.runs import checkpoint_copy, complete  # noqa: E402
+from study.scenes import DEPENDS, OVERRIDES, parse_override, restart_angle, scene_file  # noqa: E402
 
 
 def holds_checkpoint(path, theta):
@@ -78,8 +73,7 @@ def run(work, level, scene, ranks=1, launcher='mpiexec', stop_after=None, carryi
         return 0
     dependency = DEPENDS.get(scene)
     if dependency:   # the rotation's checkpoint the pull-off starts from (a file dependency of the workflow)
-        theta = float(scene_parameter(scene, 'restart theta_y'))
-        copy_restart(directory, scene, checkpoint_copy(work, level, dependency, theta))
+        copy_restart(directory, scene, checkpoint_copy(work, level, dependency, restart_angle(scene)))
     status = run_app(directory, level, scene, ranks, launcher, carrying=carrying)
     if status == 0 and archiving() and complete(directory, scene):
         archive(work, level, scene)
