@@ -71,7 +71,7 @@ def pull_off_summary(work, scene, count_from=LIFT_START):
         'Pi_sa_at_lift_start': start['Pi_sa_per_Pi_c0'],
         'jumps_in_rotation': sum(1 for r in rows if r['stage'] == 'rotation' and r['after_jump']),
         'jumps_in_lift': sum(1 for r in lift[1:] if r['after_jump']),
-        'detached': detach['P_z_nN'] < 0.01 * peak['P_z_nN'], 'rows': lift, 'start': start,
+        'detached': detach['P_z_nN'] < 0.01 * peak['P_z_nN'], 'rows': lift, 'start': start, 'before': before,
     }
 
 

@@ -61,7 +61,7 @@ from study.archive import (ARCHIVE, ENDED_SUFFIX, STOPPED_SUFFIX, archive, archi
                            restore, restore_ended)
 from study.figures import field_pictures, plots  # noqa: E402
 from study.app import APP  # noqa: E402
-from study.runs import complete  # noqa: E402
+from study.runs import complete, started as run_started  # noqa: E402
 from study.scenes import DEPENDS, OVERRIDES, STUDIES, format_override, parse_override, planned_runs  # noqa: E402
 from study.glance import glance  # noqa: E402
 from study import shear_tables  # noqa: E402
@@ -132,9 +132,15 @@ def main():
             (STOPPED_SUFFIX, STOPPED_SUFFIX + '.copying', STOPPED_SUFFIX + '.old', ENDED_SUFFIX, ENDED_SUFFIX + '.copying'))])
         restore_ended(arguments.work, [(level, name[:-len(ENDED_SUFFIX)]) for level, name in kept
                                        if name.endswith(ENDED_SUFFIX)])   # the runs the app ended, as they ended
-    print(f'study {arguments.study}: {len(runs) - len(failed)} of {len(runs)} runs complete in '
-          f'{time.time() - started:.0f} s' + (f'; failed: {", ".join(" ".join(f) for f in failed)}' if failed else ''),
-          flush=True)
+    if arguments.no_run:   # nothing ran: say how many of the study's runs the tables can use
+        kept_runs = [scene for level, scene in runs if run_started(os.path.join(arguments.work, level), scene)]
+        missing = [scene for _, scene in runs if scene not in kept_runs]
+        print(f'study {arguments.study}: {len(kept_runs)} of {len(runs)} runs there to tabulate (complete, or ended '
+              f'by the app)' + (f'; not run: {", ".join(missing)}' if missing else ''), flush=True)
+    else:
+        print(f'study {arguments.study}: {len(runs) - len(failed)} of {len(runs)} runs complete in '
+              f'{time.time() - started:.0f} s' + (f'; failed: {", ".join(" ".join(f) for f in failed)}' if failed
+                                                  else ''), flush=True)
     if arguments.study == 'shear':
         shear_report(arguments.work, arguments.docs)
         return 1 if failed else 0

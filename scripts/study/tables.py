@@ -5,6 +5,7 @@ import os
 from convergence import ASSUMED_ORDER, LEVELS, richardson
 from curves import interpolate, pad_slip, pull_off_summary, read_curve
 from study.runs import complete, outcome, started
+from study.snap_split import snap_split_lines
 
 
 # Fig. 9's pull-offs at 60 deg: (scene, label, end face free in X), for its table and its plot.
@@ -315,6 +316,7 @@ def write_tables(work, scenes, level):
         markdown += table6_lines(summaries, pulls, level, tables)
         markdown += detachment_lines(summaries, pulls, level, tables)
         markdown += table5_lines(summaries, pulls, level)
+        markdown += snap_split_lines(summaries, pulls, level, PAPER_TABLE5_START, PAPER_TABLE6, PAPER_PI_C0)
     for title, prefix in (('Table 7: adhesion strength gamma_W / gamma_W0 (theta_y = 60 deg)', 'gamma-W'),
                           ('Table 8: length scale gamma_L / gamma_L0 (theta_y = 60 deg)', 'gamma-L')):
         markdown += sweep_lines(work, summaries, level, title, prefix, rotation_rows, rotation_source)
