@@ -60,17 +60,27 @@ def summaries(work):
     return found
 
 
+# A pull whose jump found no stable state while the part of the pad still adhering slid farther than this along the
+# substrate (the Lennard-Jones cut-off, beyond the reach of the adhesion it started in) has slid off: a way to let go
+# of its own, not a solver stop.
+SLID_OFF_NM = 10.0
+
+
 def outcome(work, scene):
     """How a pull ended, as its run says: (detached?, words): detached (the app's detachment line), held on to its
-    final travel, or stopped (with the app's diagnosis)."""
+    final travel, slid off (SLID_OFF_NM) or stopped (with the app's diagnosis)."""
     log = os.path.join(work, scene + '.log')
     text = open(log).read() if os.path.exists(log) else ''
     if complete(work, scene):
         detachment = [line for line in text.splitlines() if line.startswith('detachment:')]
         return (True, 'detached') if detachment else (False, 'held on to the final travel')
     diagnosis = app_diagnosis(text) or 'did not finish'
-    kept = re.search(r'jump past the instability failed.*kept (\d+ %) of the adhesion energy', diagnosis)
-    if kept:   # the pad neither settled nor came off: it went on sliding
+    kept = re.search(r'jump past the instability failed.*kept (\d+ %) of the adhesion energy'
+                     r'(?:, its adhering part slid ([0-9.]+) nm)?', diagnosis)
+    if kept and kept.group(2) and float(kept.group(2)) > SLID_OFF_NM:   # the pad neither settled nor came off
+        return False, (f'slid off: no stable state after a jump, its adhering part slid {kept.group(2)} nm along the '
+                       f'substrate keeping {kept.group(1)} of the adhesion')
+    if kept:
         return False, f'stopped: no stable state after a jump (its descent kept {kept.group(1)} of the adhesion)'
     return False, f'stopped: {diagnosis} (values up to the last converged state)'
 
@@ -79,7 +89,8 @@ def cell(summary):
     """A table cell: the pull-off force, marked where the run did not detach."""
     if summary is None:
         return 'not run'
-    mark = '' if summary['detached'] else (' (held on)' if summary['complete'] else ' (stopped)')
+    mark = '' if summary['detached'] else (' (held on)' if summary['complete'] else
+                                           ' (slid off)' if summary['outcome'].startswith('slid off') else ' (stopped)')
     return f"{summary['pull_off_nN']:.2f}{mark}"
 
 
@@ -89,7 +100,9 @@ def lines(work, level):
     markdown = [f'### Pull-off force along the pull [nN] ({level} mesh)\n',
                 'Rows: the pull angle beta (90: straight up, 180: along the substrate away from the pad). Columns: '
                 'the law, with the end face held across the pull or free. "held on": the pull reached its final '
-                'travel (600 nm) still attached; "stopped": the run ended before detachment.\n']
+                'travel (600 nm) still attached; "slid off": after a snap no stable state followed while the part of the '
+                f'pad still adhering slid more than {SLID_OFF_NM:g} nm along the substrate; "stopped": the run ended '
+                'before detachment.\n']
     columns = [(law, constraint) for law in LAWS for constraint in CONSTRAINTS[law]]
     markdown.append('| beta [deg] | ' + ' | '.join(f'{law} {constraint}' for law, constraint in columns) + ' |')
     markdown.append('|---|' + '---|' * len(columns))

@@ -89,4 +89,17 @@ with tempfile.TemporaryDirectory() as work:
         'the descent state is checkpointed\n')
     check(shear_tables.outcome(work, 'b') == (False, 'stopped: no stable state after a jump (its descent kept 26 % of '
                                                      'the adhesion)'), f"a failed jump: {shear_tables.outcome(work, 'b')}")
+    # The app's slip of the adhering part: beyond SLID_OFF_NM the pad slid off, within it the run stopped.
+    for slip, expected in (('35.2', 'slid off: no stable state after a jump, its adhering part slid 35.2 nm along the '
+                                    'substrate keeping 88 % of the adhesion'),
+                           ('0.4', 'stopped: no stable state after a jump (its descent kept 88 % of the adhesion)')):
+        open(os.path.join(work, 'b.log'), 'w').write(
+            'step 1 ...\nspatula: solver failure at step 302, lift = 287.783: jump past the instability failed: no '
+            "stable state within 500 iterations (311 descent steps); the descent's last state kept 88 % of the adhesion "
+            f'energy, its adhering part slid {slip} nm along the substrate (mean); the descent state is checkpointed\n')
+        check(shear_tables.outcome(work, 'b') == (False, expected), f"slip {slip}: {shear_tables.outcome(work, 'b')}")
+    check(shear_tables.cell(dict(point, detached=False, complete=False, outcome=expected)).endswith('(stopped)'),
+          'a stopped pull is marked so')
+    check(shear_tables.cell(dict(point, detached=False, complete=False, outcome='slid off: ...')).endswith('(slid off)'),
+          'a pull that slid off is marked so')
 finish('shear study: all expectations met')

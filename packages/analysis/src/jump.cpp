@@ -104,14 +104,22 @@ std::optional<Failure> LoadPath::jump(Master controlled, double value, const Cal
   // limit is kept: more iterations can go on from it.
   if (outcome.found || !outcome.can_go_on) jump_in_progress_.reset();
   if (!outcome.found) {
-    // How far the descent got: the share of the adhesion energy its last state still holds.
+    // How far the descent got: the share of the adhesion energy its last state still holds, and how far the part
+    // of the pad that still adheres has slid along the substrate since the jump began (a pad sliding off, not
+    // lifting off, goes on sliding).
     const auto last = system.evaluate(*x, nullptr, false);
     const double kept = before.contact_energy != 0.0 ? last.contact_energy / before.contact_energy : 1.0;
+    const auto slip = system.contact_gap_changes(*x_, *x, 1.0);
+    std::ostringstream reason;
+    reason << "jump past the instability failed: " << outcome.failure << "; the descent's last state kept "
+           << std::lround(100.0 * kept) << " % of the adhesion energy";
+    if (slip.adhering_area > 0.0)
+      reason << ", its adhering part slid " << std::fixed << std::setprecision(1) << slip.mean_slip
+             << " nm along the substrate (mean)";
     Failure failure;
     failure.step = next_step();
     failure.load = value;
-    failure.reason = "jump past the instability failed: " + outcome.failure + "; the descent's last state kept " +
-                     std::to_string(static_cast<int>(std::lround(100.0 * kept))) + " % of the adhesion energy";
+    failure.reason = reason.str();
     return failure;
   }
   const int iterations = outcome.iterations;

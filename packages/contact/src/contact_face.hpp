@@ -224,9 +224,11 @@ KOKKOS_INLINE_FUNCTION ContactFaceResult contact_face(const Integrand& integrand
 // (the strongest attraction, where the law's stiffness changes sign): the limiting points of a Newton step at the
 // peel front. Adds to sums[0..9]: their count, the count of points whose gap changes by more than `large` (nm), the
 // crossing points' reference X, Y, X^2 and Y^2, and their share of the adhesion energy's change along the step,
-// sum phi(x(t)) dA - phi(x(0)) dA at t = 0.25, 0.5, 0.75, 1 (x(t) = x_from + t (x_to - x_from)). Points beyond the
-// cut-off at both ends are not looked at.
-constexpr int gap_change_sums = 10;
+// sum phi(x(t)) dA - phi(x(0)) dA at t = 0.25, 0.5, 0.75, 1 (x(t) = x_from + t (x_to - x_from)); and to sums[10..11]
+// the points still adhering at `to` (gap below the inflection): their undeformed area and the integral of their travel
+// along the substrate's plane (X, Y), sum |x_to - x_from|_XY dA, how far the held part of the pad has slid. Points
+// beyond the cut-off at both ends are not looked at.
+constexpr int gap_change_sums = 12;
 template <class Surface, class Integrand>
 KOKKOS_INLINE_FUNCTION void face_gap_changes(const Integrand& integrand, const double X[Surface::nodes][3],
                                              const double A[Surface::nodes][3],
@@ -244,6 +246,10 @@ KOKKOS_INLINE_FUNCTION void face_gap_changes(const Integrand& integrand, const d
       const double g_from = integrand.gap(from), g_to = integrand.gap(to);
       if (g_from > integrand.cut_off() && g_to > integrand.cut_off()) continue;
       if (::fabs(g_to - g_from) > large) sums[1] += 1.0;
+      if (g_to < inflection) {
+        sums[10] += point.dA;
+        sums[11] += ::sqrt((to[0] - from[0]) * (to[0] - from[0]) + (to[1] - from[1]) * (to[1] - from[1])) * point.dA;
+      }
       if ((g_from - inflection) * (g_to - inflection) >= 0.0) continue;
       sums[0] += 1.0;
       sums[2] += point.X[0];

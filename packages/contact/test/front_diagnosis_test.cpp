@@ -5,6 +5,7 @@
 // phi(g_eq)) at t of the step (no strain, one gap everywhere), all of it the limiting points' share; a short
 // translation carries none across. In a Newton solve with its convergence table and 'front diagnosis', every
 // iteration's row is followed by the diagnosis of its full step; without 'front diagnosis' the table has no such line.
+// The points still adhering after a rigid slide along the substrate report its length as their mean slip.
 #include "adhering_bar.hpp"
 #include "discretization/system_fields.hpp"
 #include "solvers/front_diagnosis.hpp"
@@ -48,6 +49,37 @@ TEST(FrontDiagnosis, ARigidLiftAcrossTheInflectionCountsEveryPointAndTheLawsEner
   EXPECT_EQ(short_lift.gaps.large, 0);
   // ... unless the fraction of r0 is smaller than its change (0.02 nm = 0.05 r0).
   EXPECT_EQ(solvers::diagnose_front(*bar.model, *from, *translated(bar, 0.02), 0.04).gaps.large, 4);
+}
+
+// The bar moved rigidly by s along X and d along Z.
+Teuchos::RCP<discretization::Vector> moved(const test::AdheringBar& bar, double s, double d)
+{
+  auto x = translated(bar, d);
+  std::vector<double> u(3 * bar.mesh.node_count(), 0.0);
+  for (std::int64_t n = 0; n < bar.mesh.node_count(); ++n) {
+    u[3 * n] = s;
+    u[3 * n + 2] = d;
+  }
+  discretization::set_displacements(*bar.system, *x, u);
+  return x;
+}
+
+TEST(FrontDiagnosis, TheAdheringPointsSlipIsTheirTravelAlongTheSubstrate)
+{
+  test::AdheringBar bar;
+  bar.system->set_control({{true, true, true}});
+  const double area = test::AdheringBar::side * test::AdheringBar::side;
+  // Slid by 3.5 nm at the equilibrium gap: every point still adheres and has travelled 3.5 nm.
+  const auto from = translated(bar, 0.0);
+  const auto slid = bar.system->contact_gap_changes(*from, *moved(bar, 3.5, 0.0), 0.25);
+  EXPECT_NEAR(slid.adhering_area, area, 1e-12 * area);
+  EXPECT_NEAR(slid.mean_slip, 3.5, 1e-12);
+  EXPECT_EQ(slid.crossing, 0);
+  // Slid and lifted past the inflection: nothing adheres, so nothing has slid.
+  const auto lifted = bar.system->contact_gap_changes(*from, *moved(bar, 3.5, 0.3), 0.25);
+  EXPECT_EQ(lifted.adhering_area, 0.0);
+  EXPECT_EQ(lifted.mean_slip, 0.0);
+  EXPECT_EQ(lifted.crossing, 4);
 }
 
 TEST(FrontDiagnosis, EveryRowOfTheConvergenceTableIsFollowedByItsFullStepsDiagnosis)

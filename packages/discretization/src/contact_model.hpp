@@ -37,12 +37,14 @@ struct ContactTotals {
 // The contact points a Newton step carries across the law's inflection (its strongest attraction, where its stiffness
 // changes sign): the peel front's limiting points. Their count, where they sit in the reference configuration (the
 // mean and spread of X and Y) and their share of the change of Pi_c along the step; and the count of points whose
-// gap changes by more than a given fraction of r0.
+// gap changes by more than a given fraction of r0; and how far the points still adhering at the end have slid.
 struct GapChanges {
   int crossing = 0;
   int large = 0;
   double mean[2] = {0.0, 0.0}, spread[2] = {0.0, 0.0};   // X and Y of the crossing points [nm]
   double energy_change[4] = {0.0, 0.0, 0.0, 0.0};        // at t = 0.25, 0.5, 0.75 and 1 of the step [nN nm]
+  double adhering_area = 0.0;   // undeformed area of the points still adhering at the end [nm^2]
+  double mean_slip = 0.0;       // their mean travel along the substrate's plane [nm] (0 without such points)
 };
 // The peel front's points a step would release, for a step that limits their gap change (DiscreteSystem::
 // contact_gap_limit): their count and the target t of the row c . du = t.

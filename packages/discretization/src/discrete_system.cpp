@@ -330,6 +330,8 @@ GapChanges DiscreteSystem::contact_gap_changes(const Vector& from, const Vector&
       changes.spread[i] = std::sqrt(std::max(0.0, sums[4 + i] / sums[0] - changes.mean[i] * changes.mean[i]));
     }
   for (int k = 0; k < 4; ++k) changes.energy_change[k] = sums[6 + k];
+  changes.adhering_area = sums[10];
+  if (sums[10] > 0.0) changes.mean_slip = sums[11] / sums[10];
   return changes;
 }
 

@@ -103,7 +103,8 @@ public:
   std::vector<double> contact_history() const;
   void set_contact_history(const std::vector<double>& all);
   // The contact points whose gap crosses the law's inflection, or changes by more than `fraction` r0, from the state
-  // `from` to the state `to` (all ranks; none without adhesion). Collective.
+  // `from` to the state `to`, and the mean slip of those adhering at `to` (all ranks; none without adhesion).
+  // Collective.
   GapChanges contact_gap_changes(const Vector& from, const Vector& to, double fraction);
   // The points the step from `from` to `to` carries outward past the law's inflection + `beyond` (nm): into `row`
   // the integral of their gap's gradient (zero at prescribed masters), and their count and target, the integral of
