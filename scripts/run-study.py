@@ -133,10 +133,9 @@ def main():
         restore_ended(arguments.work, [(level, name[:-len(ENDED_SUFFIX)]) for level, name in kept
                                        if name.endswith(ENDED_SUFFIX)])   # the runs the app ended, as they ended
     if arguments.no_run:   # nothing ran: say how many of the study's runs the tables can use
-        kept_runs = [scene for level, scene in runs if run_started(os.path.join(arguments.work, level), scene)]
-        missing = [scene for _, scene in runs if scene not in kept_runs]
-        print(f'study {arguments.study}: {len(kept_runs)} of {len(runs)} runs there to tabulate (complete, or ended '
-              f'by the app)' + (f'; not run: {", ".join(missing)}' if missing else ''), flush=True)
+        missing = [scene for level, scene in runs if not run_started(os.path.join(arguments.work, level), scene)]
+        print(f'study {arguments.study}: {len(runs) - len(missing)} of {len(runs)} runs there to tabulate '
+              f'(complete, or ended by the app)' + (f'; not run: {", ".join(missing)}' if missing else ''), flush=True)
     else:
         print(f'study {arguments.study}: {len(runs) - len(failed)} of {len(runs)} runs complete in '
               f'{time.time() - started:.0f} s' + (f'; failed: {", ".join(" ".join(f) for f in failed)}' if failed

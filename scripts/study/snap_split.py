@@ -54,8 +54,8 @@ def split_row(summary, paper_start, paper_delta_work, pi_c0_1e18):
 
 def snap_split_lines(summaries, pulls, level, paper_start, paper_table6, paper_pi_c0):
     """The Markdown table of every pull-off in `pulls` (theta_y) of one level."""
+    from study.tables import percent   # (here, not at the top: study.tables imports this module)
     pi_c0_1e18 = 2.0 * paper_pi_c0   # Pi_c0 [1e-18 J] for E = 2 GPa, R0 = 1 nm (the paper's units)
-    percent = lambda value, of: f'{100.0 * (value / of - 1.0):+.1f} %'
     heads = ' | '.join(f'Pi_int {lift:g} nm before' for lift in LIFTS_BEFORE_NM)
     markdown = [f'### Table 5 near the main snap: how the total work splits ({level} mesh)\n',
                 'Pi_ext against the paper\'s Pi_ext,0 + Delta Pi_ext (Tables 5 and 6); Pi_int and Pi_sa at the '
