@@ -38,6 +38,9 @@ iterations' = 0; 'after' is the current defaults):
                           the case goes on from the last checkpoint (--resume). Its wall time is the sum over the
                           segments (a segment a session killed counts to its last logged step); its row is written
                           once the run has finished, with P_max, Delta u_z and Delta Pi_ext.
+  fine-pull-off-60-trust-region   the same run with Loading/Jump/method = trust region (the snaps' descents by
+                          truncated conjugate gradients in a trust region, preconditioned by kept factors); work
+                          directory fine-60-trust-region, resumed like fine-pull-off-60.
 
   accurate-table6-study   the same study on the medium mesh with the equal-area section (within 1 % of the fine
                           level), both cores: the study scenes with double-precision factors against the faster path
@@ -48,7 +51,8 @@ iterations' = 0; 'after' is the current defaults):
                           and which rows it writes (medium-pull-off-90 also writes medium-snap and two-ranks-90).
 
     benchmarks/speedup.py [--cases fine-newton-iteration medium-pull-off-45 peer-medium-iteration
-                                   medium-table6-study fine-pull-off-60 medium-pull-off-90 newton-per-state]
+                                   medium-table6-study fine-pull-off-60 fine-pull-off-60-trust-region
+                                   medium-pull-off-90 newton-per-state]
                           [--work DIR] [--docs] [--level LEVEL]
 
 Run it on a quiet machine (nothing else on the two cores): the default cases take about an hour, most of it the
@@ -250,7 +254,10 @@ def medium_table6_study(work, level, accurate=False):
                  before_counts=counts(before), after_counts=counts(after))]
 
 
-FINE_60 = 'fine-60'
+# The fine pull-off's variants: case -> (work name, Loading/Jump entries). Shifted Newton's descents refactor by
+# cost (a fine factorization is dear); the trust region keeps its factors as a preconditioner instead.
+FINE_60 = {'fine-pull-off-60': ('fine-60', {'refactor': 'cost'}),
+           'fine-pull-off-60-trust-region': ('fine-60-trust-region', {'method': 'trust region'})}
 
 
 def segment_seconds(log_path):
@@ -264,23 +271,24 @@ def segment_seconds(log_path):
     return float(steps[-1]) if steps else 0.0
 
 
-def fine_pull_off_60(work):
-    xml = os.path.join(work, FINE_60 + '.xml')
+def fine_pull_off_60(work, case='fine-pull-off-60'):
+    name, jump = FINE_60[case]
+    xml = os.path.join(work, name + '.xml')
     if not os.path.exists(xml):
-        open(xml, 'w').write(benchmark_scene(FINE_60, mesh='fine', theta_y=60.0, land_at=(30.0, 45.0, 60.0),
+        open(xml, 'w').write(benchmark_scene(name, mesh='fine', theta_y=60.0, land_at=(30.0, 45.0, 60.0),
                                              newton=AFTER_SCENE['Nonlinear Solver'], steps=AFTER_SCENE['Steps'],
                                              lift_maximum=AFTER_SCENE['lift maximum'], fields=0,
-                                             jump={'refactor': 'cost'}, checkpoint_minutes=5))
-    done = os.path.isdir(os.path.join(work, FINE_60))
-    logs = sorted((f for f in os.listdir(work) if re.fullmatch(FINE_60 + r'\.segment-\d+\.log', f)),
+                                             jump=jump, checkpoint_minutes=5))
+    done = os.path.isdir(os.path.join(work, name))
+    logs = sorted((f for f in os.listdir(work) if re.fullmatch(re.escape(name) + r'\.segment-\d+\.log', f)),
                   key=lambda f: int(re.search(r'(\d+)\.log$', f).group(1)))
     interrupted = bool(logs) and 'interrupted by SIG' in open(os.path.join(work, logs[-1])).read()
-    if os.path.isdir(os.path.join(work, FINE_60 + '.incomplete')) and not interrupted:   # (a signal's stop resumes)
-        sys.exit(f'{FINE_60}: the run failed (see {work}/{FINE_60}.incomplete/FAILURE.txt)')
+    if os.path.isdir(os.path.join(work, name + '.incomplete')) and not interrupted:   # (a signal's stop resumes)
+        sys.exit(f'{name}: the run failed (see {work}/{name}.incomplete/FAILURE.txt)')
     if not done:
-        resume = any(os.path.isdir(os.path.join(work, FINE_60 + suffix)) for suffix in ('.partial', '.incomplete'))
-        log_path = os.path.join(work, f'{FINE_60}.segment-{len(logs) + 1}.log')
-        print(f'{FINE_60}: segment {len(logs) + 1} ({"resumed" if resume else "from the start"}), log {log_path}',
+        resume = any(os.path.isdir(os.path.join(work, name + suffix)) for suffix in ('.partial', '.incomplete'))
+        log_path = os.path.join(work, f'{name}.segment-{len(logs) + 1}.log')
+        print(f'{name}: segment {len(logs) + 1} ({"resumed" if resume else "from the start"}), log {log_path}',
               flush=True)
         started = time.time()
         with open(log_path, 'w') as log:
@@ -289,16 +297,18 @@ def fine_pull_off_60(work):
         with open(log_path, 'a') as log:
             log.write(f'segment wall: {time.time() - started:.1f} s\n')
         if status != 0:
-            sys.exit(f'{FINE_60}: exit {status} (see {log_path})')
+            sys.exit(f'{name}: exit {status} (see {log_path})')
         logs.append(os.path.basename(log_path))
     seconds = [segment_seconds(os.path.join(work, f)) for f in logs]
-    summary = pull_off_summary(work, FINE_60, count_from=RECORDED_BENCHMARK_START)
+    summary = pull_off_summary(work, name, count_from=RECORDED_BENCHMARK_START)
     solver = re.search(r'^solver: (\d+) tangents', open(os.path.join(work, logs[-1])).read(), re.M)
-    print(f'{FINE_60}: {sum(seconds):.0f} s in {len(seconds)} segment(s), P_max {summary["P_max_nN"]:.4f} nN',
+    print(f'{name}: {sum(seconds):.0f} s in {len(seconds)} segment(s), P_max {summary["P_max_nN"]:.4f} nN',
           flush=True)
-    return [dict(case='fine-pull-off-60', before_s='', after_s=round(sum(seconds), 1), ratio='',
-                 max_result_change_pct='', before_counts='never finished before the solver work',
-                 after_counts=f'2 ranks, wall in {len(seconds)} segment(s) '
+    return [dict(case=case, before_s='', after_s=round(sum(seconds), 1), ratio='',
+                 max_result_change_pct='',
+                 before_counts='never finished before the solver work' if case == 'fine-pull-off-60' else
+                 'shifted Newton descents: the fine-pull-off-60 row',
+                 after_counts=f'2 ranks, Jump {jump}, wall in {len(seconds)} segment(s) '
                               f'({" + ".join(f"{s:.0f}" for s in seconds)} s), last segment '
                               f'{solver.group(1) if solver else "?"} tangents, P_max {summary["P_max_nN"]:.4f} nN, '
                               f'Delta u_z {summary["delta_u_z_nm"]:.2f} nm, '
@@ -324,13 +334,13 @@ def peer_medium_iteration(work):
 
 
 CASE_ROWS = ['medium-pull-off-45', 'fine-newton-iteration', 'fine-newton-iteration-fresh-factors',
-             'peer-medium-iteration', 'medium-table6-study', 'fine-pull-off-60', *FRONT_ROWS, 'accurate-table6-study']
+             'peer-medium-iteration', 'medium-table6-study', 'fine-pull-off-60', 'fine-pull-off-60-trust-region', *FRONT_ROWS, 'accurate-table6-study']
 
 
 def main():
     cases = ['fine-newton-iteration', 'medium-pull-off-45', 'peer-medium-iteration']   # the hour-long default
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument('--cases', nargs='*', default=cases, choices=cases + ['medium-table6-study', 'fine-pull-off-60', *FRONT_CASES,
+    parser.add_argument('--cases', nargs='*', default=cases, choices=cases + ['medium-table6-study', *FINE_60, *FRONT_CASES,
                                                             'accurate-table6-study'])
     parser.add_argument('--work', default='speedup')
     parser.add_argument('--docs', action='store_true')
@@ -347,8 +357,8 @@ def main():
             rows += fine_newton_iteration()
         elif case == 'medium-pull-off-45':
             rows += medium_pull_off_45(work)
-        elif case == 'fine-pull-off-60':
-            rows += fine_pull_off_60(work)
+        elif case in FINE_60:
+            rows += fine_pull_off_60(work, case)
         elif case in FRONT_CASES:
             rows += front_case(case, work)
         elif case in ('medium-table6-study', 'accurate-table6-study'):

@@ -318,6 +318,16 @@ void check_checkpoint(const Scene& scene, const discretization::NodeSpace& nodes
           " points per face (it was written with another law or quadrature); a law with state goes on only from its "
           "own states, or from any with 'Adhesion/stiction anchors' = 'restart state' (it then starts there, relaxed)");
   }
+  // Tangential tractions are measured from the stiction anchors: a state of a run that set them at its restart state
+  // (stored with it) goes on with those (--resume) or with new ones at this state, never from the undeformed ones.
+  if (scene.adhesion.enabled && scene.adhesion.model->holds_tangentially() &&
+      !scene.adhesion.settings.anchor_at_restart && in->exists(group + "/anchors"))
+    throw parameters::InputError(
+        restart_key(scene) + ": checkpoint '" + label + "' was written by a run whose stiction anchors were set at "
+        "its restart state, but this scene has 'Adhesion/stiction anchors' = 'undeformed': the checkpoint's tangential "
+        "tractions and contact histories are measured from its own anchors. Resume that run (spatula --resume with its "
+        "scene), or set the anchors anew at this state ('Adhesion/stiction anchors' = 'restart state': the pad starts "
+        "there unstrained)");
   // The stage it lies in must be one of this scene's path (a scene without loading follows none).
   if (!scene.loading.stages.empty() && in->exists(group + "/stage")) {
     const auto stage = static_cast<int>(in->read_doubles(group + "/stage").at(0));

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace spatula::app {
@@ -106,8 +107,13 @@ void LoadingParameters::declare(Teuchos::ParameterList& loading)
                              "how a descent iteration moves: shifted newton (a Newton step on the tangent shifted "
                              "until positive definite, a line search on Pi) or trust region (truncated conjugate "
                              "gradients on the tangent within a trust region, preconditioned by kept factors, "
-                             "following negative curvature; 'refactor' and 'reused factors' are then not used)",
+                             "following negative curvature; 'refactor' and 'reused factors' are then not used) or "
+                             "auto (the trust region for systems of at least 'trust region from' unknowns, where a "
+                             "factorization costs many solves; shifted newton below)",
                              analysis::JumpParameters::method_names());
+  parameters::declare_int(jump, "trust region from", d.jump.trust_region_from,
+                          "method = auto: unknowns from which a descent takes the trust region",
+                          Range::closed(0, std::numeric_limits<int>::max()));
   parameters::declare_string(jump, "refactor",
                              parameters::name_of(d.jump.refactor, analysis::JumpParameters::refactor_names()),
                              "when a descent replaces its factors: count (after 'reused factors' further iterations) "
@@ -180,6 +186,7 @@ LoadingParameters LoadingParameters::from(const Teuchos::ParameterList& loading)
   p.jump.maximum_iterations = jump.get<int>("maximum iterations");
   p.jump.method = parameters::choice<analysis::JumpParameters::Method>(jump, "method",
                                                                        analysis::JumpParameters::method_names());
+  p.jump.trust_region_from = jump.get<int>("trust region from");
   p.jump.refactor = parameters::choice<analysis::JumpParameters::Refactor>(jump, "refactor",
                                                                            analysis::JumpParameters::refactor_names());
   p.jump.reused_factors = jump.get<int>("reused factors");

@@ -146,6 +146,15 @@ std::string usable_ranges(const Scene& scene, mesh::Part part)
   throw parameters::InputError(message.str());
 }
 
+// A part of a scene as --resume compares it: a jump's iteration limit may differ (a descent stopped at it goes on with
+// a larger one).
+Teuchos::ParameterList resumable_part(Teuchos::ParameterList& scene, const std::string& part)
+{
+  Teuchos::ParameterList list = scene.sublist(part);
+  if (part == "Loading" && list.isSublist("Jump")) list.sublist("Jump").remove("maximum iterations", false);
+  return list;
+}
+
 }  // namespace
 
 std::string prepare_resume(Scene& scene)
@@ -169,7 +178,7 @@ std::string prepare_resume(Scene& scene)
     }
     for (const char* part : {"Geometry", "Mesh", "Material", "Adhesion", "Loading"})   // values, in any order
       if (!earlier.isSublist(part) ||
-          !Teuchos::haveSameValuesSorted(earlier.sublist(part), scene.validated.sublist(part)))
+          !Teuchos::haveSameValuesSorted(resumable_part(earlier, part), resumable_part(scene.validated, part)))
         throw parameters::InputError(key + ": the stopped run in '" + stopped + "' was made with other '" + part +
                                      "' parameters (its scene.xml): resume it with its own scene, or run this one "
                                      "without --resume (which replaces it)");

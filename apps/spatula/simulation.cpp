@@ -336,8 +336,12 @@ std::optional<Stop> Run::finish(std::optional<analysis::Failure> failure, int in
   stop.moved = stage().master();
   stop.force = stage().force();
   if (failure && !out_of_memory_ && path_.jump_in_progress())   // a descent stopped at its iteration limit
-    failure->reason += "; the descent's state is checkpointed with the last state: a restart from it ('Loading/restart "
-                       "from' = 'last state') with a larger 'Loading/Jump/maximum iterations' goes on from there";
+    failure->reason += anchors_ ? "; the descent's state is checkpointed with the last state and the stiction anchors: "
+                                  "resuming the run (spatula --resume) with a larger 'Loading/Jump/maximum iterations' "
+                                  "goes on from there with the same anchors"
+                                : "; the descent's state is checkpointed with the last state: resuming the run (spatula "
+                                  "--resume) or a restart from it ('Loading/restart from' = 'last state'), with a larger "
+                                  "'Loading/Jump/maximum iterations', goes on from there";
   if (failure) stop.failure = *failure;
   else if (paused())
     stop.failure = analysis::Failure{last.step, load_of(last), 0.0,

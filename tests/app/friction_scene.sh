@@ -6,7 +6,8 @@
 # restarted from its last state (the contact points' histories stored with it) starts from the stopped state exactly
 # and ends where the uninterrupted run ends (to 1e-4: with friction the state depends a little on the steps). A
 # frictionless checkpoint cannot restart a friction scene (no history): an input error naming the key; with
-# 'Adhesion/stiction anchors' = 'restart state' it can, the friction law starting there unstrained. The variational
+# 'Adhesion/stiction anchors' = 'restart state' it can, the friction law starting there unstrained; a state of such a
+# run goes on only with its own anchors (--resume) or new ones, never with undeformed ones. The variational
 # update follows the same rotation within 1 % with LDL^T factors.
 # usage: friction_scene.sh <spatula> <source dir>
 set -u
@@ -150,4 +151,42 @@ print(f"from the frictionless state at 8 deg (M_y {float(relaxed[0]['M_y_nNnm'])
       f"M_y {float(relaxed[-1]['M_y_nNnm']):.4f} nN nm")
 PY
 passed "a friction run from a frictionless state, anchored there"
+
+# A run anchored at its restart state measures its tangential tractions from those anchors (stored with its
+# checkpoints): a restart from its last state with the anchors undeformed is refused by name; --resume goes on with
+# them, also with another 'Loading/Jump/maximum iterations' (the one change it accepts), and keeps the stopped rows.
+from_8="<Parameter name=\"restart file\" type=\"string\" value=\"checkpointed/checkpoints.h5\"/>
+  <Parameter name=\"restart theta_y\" type=\"double\" value=\"8\"/>"
+anchor='s#<ParameterList name="Friction">#<Parameter name="stiction anchors" type="string" value="restart state"/>&#'
+friction anchored 16 0.3 "$from_8" | sed "$anchor" > anchored.xml
+"$app" anchored.xml > anchored.log 2>&1 &
+pid=$!
+for _ in $(seq 2400); do [ "$(grep -c '^step ' anchored.log)" -ge 2 ] && break; sleep 0.05; done
+kill -TERM "$pid"
+wait "$pid"
+[ -s anchored.incomplete/checkpoints.h5 ] || fail "no checkpoint from the anchored run"
+cp anchored.incomplete/curve.csv anchored-stopped.csv   # (--resume takes the directory over)
+friction unanchored 16 0.3 "<Parameter name=\"restart file\" type=\"string\" value=\"anchored.incomplete/checkpoints.h5\"/>
+  <Parameter name=\"restart from\" type=\"string\" value=\"last state\"/>" > unanchored.xml
+status=0
+"$app" unanchored.xml > unanchored.log 2> unanchored.err || status=$?
+[ "$status" -eq 2 ] && grep -qF "this scene has 'Adhesion/stiction anchors' = 'undeformed'" unanchored.err ||
+  { fail "a restart from an anchored run's state with undeformed anchors: exit $status"; cat unanchored.err; }
+passed "a restart with other anchors refused"
+friction anchored 16 0.3 "$from_8
+  <ParameterList name=\"Jump\"><Parameter name=\"maximum iterations\" type=\"int\" value=\"500\"/></ParameterList>" |
+  sed "$anchor" > anchored-more.xml
+"$app" anchored-more.xml --resume > anchored-more.log 2>&1 || { fail "resuming the anchored run"; tail -5 anchored-more.log; }
+/usr/bin/python3 - <<'PY' || fail "the resumed anchored run"
+import csv
+stopped, resumed = (list(csv.DictReader(open(name))) for name in ('anchored-stopped.csv', 'anchored/curve.csv'))
+assert len(resumed) > len(stopped) >= 2, (len(stopped), len(resumed))
+for a, b in zip(stopped, resumed):
+    for key in ('theta_y_deg', 'M_y_nNnm', 'dissipated_per_Pi_c0'):
+        assert abs(float(a[key]) - float(b[key])) <= 1e-9 * max(1e-6, abs(float(a[key]))), (key, a[key], b[key])
+assert abs(float(resumed[-1]['theta_y_deg']) - 16) < 1e-9
+print(f"resumed with its anchors from {float(stopped[-1]['theta_y_deg']):.2f} to 16 deg: "
+      f"M_y {float(resumed[-1]['M_y_nNnm']):.4f} nN nm")
+PY
+passed "an anchored friction run resumed with another jump limit"
 [ "$failures" -eq 0 ]

@@ -7,7 +7,8 @@
 # takes a dozen iterations. Capped at 6 descent iterations (and checkpointing after every one), the run stops with
 # the descent half done; restarted from its last state with the default cap, it must report going on from iteration
 # 6, take as many descent iterations in all as the whole jump did, and end at 30 deg in the uninterrupted run's
-# state. A SIGTERM inside the descent stops the run there, and `--resume` finishes the jump.
+# state; `--resume` with a larger cap (the one change of the scene it accepts) ends there too. A SIGTERM inside the
+# descent stops the run there, and `--resume` finishes the jump.
 # usage: jump_checkpoint.sh <spatula>
 set -u
 app=$1
@@ -31,7 +32,7 @@ rotation_scene capped 30 "$q1c1" '<ParameterList name="Jump"><Parameter name="ma
 "$app" capped.xml > capped.log 2>&1 && fail "the run capped at 6 descent iterations did not stop"
 grep -q "no stable state within 6 iterations" capped.log || fail "the capped run did not stop at its descent's limit"
 grep -q "with the jump's energy descent at iteration" capped.log || fail "no checkpoint written during the descent"
-grep -q "maximum iterations' goes on from there" capped.incomplete/FAILURE.txt 2>/dev/null ||
+grep -q "maximum iterations', goes on from there" capped.incomplete/FAILURE.txt 2>/dev/null ||
   fail "FAILURE.txt does not say how to go on with the descent"
 
 rotation_scene restarted 30 "$q1c1" "<Parameter name=\"restart file\" type=\"string\" value=\"capped.incomplete/checkpoints.h5\"/>
@@ -62,6 +63,19 @@ assert abs(float(last_b['theta_y_deg']) - 30.0) < 1e-9, last_b['theta_y_deg']
 assert abs(float(last_a['M_y_nNnm']) - float(last_b['M_y_nNnm'])) <= 1e-6 * abs(float(last_a['M_y_nNnm']))
 print(f'jump at {float(b["theta_y_deg"]):.4f} deg: {whole[0]} iterations whole, {rest[0]} counting the 6 before the '
       f'stop; M_y at 30 deg {float(last_b["M_y_nNnm"]):.6f} (uninterrupted {float(last_a["M_y_nNnm"]):.6f}) nN nm')
+PY
+# --resume of the capped run with a larger 'Loading/Jump/maximum iterations' (the one change of the scene it accepts)
+# goes on with the descent to the uninterrupted run's final state.
+sed 's#name="maximum iterations" type="int" value="6"#name="maximum iterations" type="int" value="500"#' capped.xml > more.xml
+"$app" more.xml --resume > more.log 2>&1 || { fail "--resume with a larger jump limit"; tail -3 more.log; }
+grep -q "going on with the jump's energy descent from its checkpoint" more.log ||
+  fail "--resume with a larger jump limit did not go on with the descent"
+/usr/bin/python3 - <<'PY' || fail "--resume with a larger jump limit ends elsewhere"
+import csv
+a, b = (list(csv.DictReader(open(f'{name}/curve.csv')))[-1] for name in ('reference', 'capped'))
+assert abs(float(b['theta_y_deg']) - 30.0) < 1e-9, b['theta_y_deg']
+assert abs(float(a['M_y_nNnm']) - float(b['M_y_nNnm'])) <= 1e-6 * abs(float(a['M_y_nNnm'])), (a, b)
+print(f"--resume with 500 jump iterations instead of 6: M_y at 30 deg {float(b['M_y_nNnm']):.6f} nN nm")
 PY
 # SIGTERM inside the descent: the run stops after the descent's current iteration with the descent checkpointed
 # (exit 143), and `--resume` finishes the jump and reaches the uninterrupted run's final state. The signal is sent

@@ -6,7 +6,7 @@
 //     the minimizer has to shift it), on the only stable state left, the far one in the Lennard-Jones tail;
 //   - below the fold, from the bar glued at rest with its top lifted, on the near state (the one whose basin it is);
 //   - a descent stopped by its watch and resumed from what the watch saw ends where the uninterrupted one does.
-// Both methods (shifted Newton, trust region) end on the same states.
+// Both methods (shifted Newton, trust region) end on the same states; auto descends as the one it chooses.
 #include "adhering_bar.hpp"
 #include "discretization/system_fields.hpp"
 #include "solvers/energy_minimizer.hpp"
@@ -26,11 +26,12 @@ struct Minimization : test::AdheringBar {
   solvers::EnergyMinimizer minimizer{*model, *newton, nullptr, false};
   double area = side * side;
 
-  explicit Minimization(solvers::MinimizerParameters::Method method = {})
+  explicit Minimization(solvers::MinimizerParameters::Method method = {}, int trust_region_from = 100000)
   {
     system->set_control({{true, true, true}});
     solvers::MinimizerParameters parameters;
     parameters.method = method;
+    parameters.trust_region_from = trust_region_from;
     minimizer.set_parameters(parameters);
   }
 
@@ -63,6 +64,17 @@ struct Minimization : test::AdheringBar {
                                   bar.law.strongest_attraction_gap(), bar.law.r0 * std::pow(2.0, -1.0 / 6.0));
     return bar.lift(g, bar.stretch_at(g));
   }
+  // Half a nanometre past the fold, the uniform state at the attraction's steepest fall (phi'' most negative).
+  double past_fold_lift() const { return fold_lift() + 0.5; }
+  double steepest_fall_gap() const { return bar.law.r0 * std::pow(2.0, -1.0 / 6.0); }
+  double steepest_fall_stretch() const
+  {
+    return 1.0 + (past_fold_lift() - (steepest_fall_gap() - bar.law.equilibrium_gap())) / bar.height;
+  }
+  Teuchos::RCP<discretization::Vector> past_the_fold() const
+  {
+    return uniform_state(past_fold_lift(), steepest_fall_gap(), steepest_fall_stretch());
+  }
 };
 
 using Method = solvers::MinimizerParameters::Method;
@@ -72,13 +84,11 @@ TEST_P(EachMethod, PastTheFoldFromAnIndefiniteStartReachesTheFarStableState)
 {
   Minimization m(GetParam());
   const auto& law = m.bar.law;
-  const double w = m.fold_lift() + 0.5;
-  const double g0 = law.r0 * std::pow(2.0, -1.0 / 6.0);   // the attraction's steepest fall: phi'' most negative
-  const double s0 = 1.0 + (w - (g0 - law.equilibrium_gap())) / m.bar.height;
+  const double w = m.past_fold_lift(), g0 = m.steepest_fall_gap(), s0 = m.steepest_fall_stretch();
   double phi, dphi, d2phi;
   law.exact(g0, phi, dphi, d2phi);
   ASSERT_LT(d2phi + m.bar.mu * (1.0 + 1.0 / (s0 * s0)) / m.bar.height, 0.0) << "the start is not on the unstable part";
-  auto x = m.uniform_state(w, g0, s0);
+  auto x = m.past_the_fold();
   const double start_energy = m.system->evaluate(*x, nullptr, false).energy();
 
   const auto result = m.minimizer.minimize(*x);
@@ -113,6 +123,25 @@ INSTANTIATE_TEST_SUITE_P(EnergyMinimizer, EachMethod, ::testing::Values(Method::
                          [](const ::testing::TestParamInfo<Method>& info) {
                            return info.param == Method::shifted_newton ? "ShiftedNewton" : "TrustRegion";
                          });
+
+// method = auto takes the trust region for a system of at least 'trust region from' unknowns and shifted Newton below:
+// from the indefinite start past the fold it then descends exactly as the method it chose.
+TEST(EnergyMinimizer, AutoChoosesTheMethodBySystemSize)
+{
+  const auto unknowns = static_cast<int>(Minimization().system->owned_map()->getGlobalNumElements());
+  for (const bool large : {false, true}) {
+    Minimization automatic(Method::automatic, large ? unknowns : unknowns + 1);
+    Minimization named(large ? Method::trust_region : Method::shifted_newton);
+    EXPECT_EQ(automatic.minimizer.uses_trust_region(), large);
+    auto x = automatic.past_the_fold(), y = named.past_the_fold();
+    const auto chosen = automatic.minimizer.minimize(*x), reference = named.minimizer.minimize(*y);
+    ASSERT_TRUE(chosen.found && reference.found) << chosen.failure << reference.failure;
+    EXPECT_EQ(chosen.iterations, reference.iterations) << (large ? "trust region" : "shifted newton");
+    EXPECT_EQ(chosen.indefinite_tangents, reference.indefinite_tangents);
+    x->update(-1.0, *y, 1.0);
+    EXPECT_EQ(x->normInf(), 0.0);
+  }
+}
 
 TEST(EnergyMinimizer, ADescentStoppedByItsWatchGoesOnFromWhatTheWatchSaw)
 {

@@ -16,7 +16,7 @@ namespace spatula::solvers {
 
 const std::vector<std::string>& MinimizerParameters::method_names()
 {
-  static const std::vector<std::string> names = {"shifted newton", "trust region"};
+  static const std::vector<std::string> names = {"shifted newton", "trust region", "auto"};
   return names;
 }
 
@@ -33,6 +33,14 @@ EnergyMinimizer::EnergyMinimizer(SpatulaModel& model, const EquilibriumSolver& c
 }
 
 EnergyMinimizer::~EnergyMinimizer() = default;
+
+bool EnergyMinimizer::uses_trust_region() const
+{
+  using Method = MinimizerParameters::Method;
+  if (parameters_.method != Method::automatic) return parameters_.method == Method::trust_region;
+  return model_.system().owned_map()->getGlobalNumElements() >=
+         static_cast<std::size_t>(parameters_.trust_region_from);
+}
 
 MumpsSolver& EnergyMinimizer::solver()
 {
@@ -193,8 +201,7 @@ MinimizerResult EnergyMinimizer::minimize(discretization::Vector& x, const Desce
   auto confirmed = model_.system().create_vector();
   MinimizerResult result;
   for (int confirmations = 1;; ++confirmations) {
-    const auto error = parameters_.method == MinimizerParameters::Method::trust_region
-                           ? descend_by_trust_region(x, d, small_gradient, watch)
+    const auto error = uses_trust_region() ? descend_by_trust_region(x, d, small_gradient, watch)
                            : descend_to_small_gradient(x, d, small_gradient, watch);
     result.indefinite_tangents = d.indefinite;
     result.accepted_steps = d.accepted;

@@ -29,13 +29,15 @@ struct MinimizerParameters {
   // search on Pi (each indefinite try a factorization); or a trust-region step (Steihaug-Toint truncated conjugate
   // gradients on the unshifted tangent, preconditioned by kept factors of a positive definite shifted tangent,
   // following negative curvature to the region's boundary), whose factors are renewed only when the conjugate
-  // gradients stop converging (trust_region_descent.cpp).
-  enum class Method { shifted_newton, trust_region };
+  // gradients stop converging (trust_region_descent.cpp); or, automatic, the trust region for systems of at least
+  // `trust_region_from` unknowns (where a factorization costs many solves) and shifted Newton below.
+  enum class Method { shifted_newton, trust_region, automatic };
   static const std::vector<std::string>& method_names();   // in the order of Method
   enum class Refactor { count, cost };
   static const std::vector<std::string>& refactor_names();   // in the order of Refactor
 
   Method method = Method::shifted_newton;
+  int trust_region_from = 100000;   // method = automatic
   int maximum_iterations = 500;
   double shift_growth = 4.0;      // eta factor while the shifted tangent is indefinite
   Refactor refactor = Refactor::count;
@@ -68,6 +70,8 @@ public:
   ~EnergyMinimizer();
 
   void set_parameters(const MinimizerParameters& parameters) { parameters_ = parameters; }
+  // Whether a descent moves by the trust region (the method, or the automatic choice for this system's size).
+  bool uses_trust_region() const;
 
   // Called after every descent iteration, accepted or not, with its state (collective callers welcome: every rank
   // runs the same iterations). It may throw to stop the descent.
