@@ -200,7 +200,10 @@ void Run::start()
       out_ << "restart from '" << restart_label(loading) << "' of " << loading.restart_file << " (step "
            << history.step << ", u_z " << history.lift << " nm"
            << (path_stage_.index > 0 ? ", in the " + stage().name : std::string()) << ")"
-           << (anchor ? "; contact anchors set at this state" : "") << "\n";
+           << (!anchor        ? ""
+               : scene_.resume ? "; contact anchors where the stopped run set them"
+                               : "; contact anchors set at this state")
+           << "\n";
     if (auto jump = read_jump_in_progress(scene_, *system_)) {
       if (root_)
         out_ << "  it was inside a jump past an instability (" << motion_name(jump->controlled) << " = "

@@ -36,7 +36,7 @@ struct MinimizerParameters {
   enum class Refactor { count, cost };
   static const std::vector<std::string>& refactor_names();   // in the order of Refactor
 
-  Method method = Method::shifted_newton;
+  Method method = Method::automatic;
   int trust_region_from = 100000;   // method = automatic
   int maximum_iterations = 500;
   double shift_growth = 4.0;      // eta factor while the shifted tangent is indefinite
