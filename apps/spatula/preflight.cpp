@@ -146,12 +146,15 @@ std::string usable_ranges(const Scene& scene, mesh::Part part)
   throw parameters::InputError(message.str());
 }
 
-// A part of a scene as --resume compares it: a jump's iteration limit may differ (a descent stopped at it goes on with
-// a larger one).
+// A part of a scene as --resume compares it. A jump's iteration limit may differ (a descent stopped at it goes on with
+// a larger one), and so may its descent method (either ends on the same stable state; a run stopped before 'auto'
+// was the default wrote 'shifted newton').
 Teuchos::ParameterList resumable_part(Teuchos::ParameterList& scene, const std::string& part)
 {
   Teuchos::ParameterList list = scene.sublist(part);
-  if (part == "Loading" && list.isSublist("Jump")) list.sublist("Jump").remove("maximum iterations", false);
+  if (part == "Loading" && list.isSublist("Jump"))
+    for (const char* setting : {"maximum iterations", "method", "trust region from"})
+      list.sublist("Jump").remove(setting, false);
   return list;
 }
 

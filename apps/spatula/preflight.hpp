@@ -16,9 +16,10 @@ namespace spatula::app {
 // For `spatula scene.xml --resume`: finds the run of this scene that was stopped (killed, interrupted or failed)
 // in 'Output/directory' and points the scene at its 'last state' checkpoint (Scene::resume, the restart file).
 // Returns the stopped run's directory (<directory>.partial or .incomplete). Throws parameters::InputError when there
-// is none, when it was made with another geometry, mesh, material, adhesion or loading (but for
-// 'Loading/Jump/maximum iterations': a descent stopped at its limit goes on with a larger one), or when the scene
-// cannot be resumed (stiction anchors set at a restart, in a checkpoint of a version that did not store them).
+// is none, when it was made with another geometry, mesh, material, adhesion or loading (but for the jump's
+// 'maximum iterations', 'method' and 'trust region from': a descent stopped at its limit goes on with a larger one, and
+// either method ends on the same stable state), or when the scene cannot be resumed (stiction anchors set at a
+// restart, in a checkpoint of a version that did not store them).
 std::string prepare_resume(Scene& scene);
 // Where a resumed run's checkpoint lies once its directory is the staging directory again.
 std::string resumed_checkpoint_file(const Scene& scene);

@@ -7,7 +7,7 @@
 # takes a dozen iterations. Capped at 6 descent iterations (and checkpointing after every one), the run stops with
 # the descent half done; restarted from its last state with the default cap, it must report going on from iteration
 # 6, take as many descent iterations in all as the whole jump did, and end at 30 deg in the uninterrupted run's
-# state; `--resume` with a larger cap (the one change of the scene it accepts) ends there too. A SIGTERM inside the
+# state; `--resume` with a larger cap and the trust region (changes of the scene it accepts) ends there too. A SIGTERM inside the
 # descent stops the run there, and `--resume` finishes the jump.
 # usage: jump_checkpoint.sh <spatula>
 set -u
@@ -64,9 +64,11 @@ assert abs(float(last_a['M_y_nNnm']) - float(last_b['M_y_nNnm'])) <= 1e-6 * abs(
 print(f'jump at {float(b["theta_y_deg"]):.4f} deg: {whole[0]} iterations whole, {rest[0]} counting the 6 before the '
       f'stop; M_y at 30 deg {float(last_b["M_y_nNnm"]):.6f} (uninterrupted {float(last_a["M_y_nNnm"]):.6f}) nN nm')
 PY
-# --resume of the capped run with a larger 'Loading/Jump/maximum iterations' (the one change of the scene it accepts)
-# goes on with the descent to the uninterrupted run's final state.
-sed 's#name="maximum iterations" type="int" value="6"#name="maximum iterations" type="int" value="500"#' capped.xml > more.xml
+# --resume of the capped run with a larger 'Loading/Jump/maximum iterations' and the other descent method (changes of
+# the scene it accepts) goes on with the descent, by the trust region, to the uninterrupted run's final state.
+sed 's#name="maximum iterations" type="int" value="6"/>#name="maximum iterations" type="int" value="500"/><Parameter name="method" type="string" value="trust region"/>#' \
+  capped.xml > more.xml
+grep -q 'value="trust region"' more.xml || fail "the scene with the other method was not made"
 "$app" more.xml --resume > more.log 2>&1 || { fail "--resume with a larger jump limit"; tail -3 more.log; }
 grep -q "going on with the jump's energy descent from its checkpoint" more.log ||
   fail "--resume with a larger jump limit did not go on with the descent"
@@ -75,7 +77,7 @@ import csv
 a, b = (list(csv.DictReader(open(f'{name}/curve.csv')))[-1] for name in ('reference', 'capped'))
 assert abs(float(b['theta_y_deg']) - 30.0) < 1e-9, b['theta_y_deg']
 assert abs(float(a['M_y_nNnm']) - float(b['M_y_nNnm'])) <= 1e-6 * abs(float(a['M_y_nNnm'])), (a, b)
-print(f"--resume with 500 jump iterations instead of 6: M_y at 30 deg {float(b['M_y_nNnm']):.6f} nN nm")
+print(f"--resume with 500 jump iterations instead of 6, by the trust region: M_y at 30 deg {float(b['M_y_nNnm']):.6f} nN nm")
 PY
 # SIGTERM inside the descent: the run stops after the descent's current iteration with the descent checkpointed
 # (exit 143), and `--resume` finishes the jump and reaches the uninterrupted run's final state. The signal is sent
