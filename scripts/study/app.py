@@ -32,9 +32,12 @@ def copy_restart(directory, scene, source):
 
 
 def resumable(directory, scene_xml):
-    """Whether the app finds a stopped run of this scene to go on from (`--resume --validate-only`)."""
-    result = subprocess.run([APP, scene_xml, '--resume', '--validate-only'], cwd=directory, capture_output=True)
-    return result.returncode == 0
+    """Whether the app finds a stopped run of this scene to go on from (`--resume --validate-only`), and if not, the
+    app's reason (its last line of error output)."""
+    result = subprocess.run([APP, scene_xml, '--resume', '--validate-only'], cwd=directory, capture_output=True,
+                            text=True)
+    reason = (result.stderr.strip().splitlines() or [''])[-1]
+    return result.returncode == 0, reason
 
 
 def memory_estimate_mb(xml, directory):

@@ -88,7 +88,9 @@ def run_app(directory, level, scene, ranks, launcher, options=(), carrying=False
     `carrying` its last checkpointed state kept in results/<level>/<scene>.stopped/ as it goes; returns the app's
     exit status. Interrupted (Ctrl-C), the app stops at its next converged state and checkpoints it: waited for."""
     xml = scene_file(directory, level, scene)
-    resume = resumable(directory, xml)
+    resume, refusal = resumable(directory, xml)
+    if not resume and any(os.path.isdir(os.path.join(directory, scene + s)) for s in ('.partial', '.incomplete')):
+        print(f'[{level} {scene}] its stopped run cannot be resumed, so it starts again: {refusal}', flush=True)
     log_path = os.path.join(directory, scene + '.log')
     seen = len(step_lines(log_path)) if resume else 0   # the lines a stopped run showed are not shown again
     work = os.path.dirname(directory)
