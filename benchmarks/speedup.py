@@ -31,7 +31,8 @@ iterations' = 0; 'after' is the current defaults):
                           runs' last log write; work directories table6-<level>-<before|after>); the row is written once both halves are complete. --level coarse runs
                           it on the coarse mesh, a quick check of the script (no row is written then).
   fine-pull-off-60        the fine-mesh (the paper's) frictionless Q1C2 pull-off at 60 deg on 2 ranks with the
-                          after scene's settings and Loading/Jump/refactor = cost (a fine factorization is dear):
+                          after scene's settings, jumps by Loading/Jump/method = shifted newton with refactor = cost
+                          (a fine factorization is dear; the default, auto, takes the trust region on this mesh):
                           rotation to 60 deg with zero net force (checkpoints at 30, 45 and
                           60 deg for later pull-offs), then 600 nm of lift, to detachment. No before: the code before
                           the code before it never finished it. Hours long: it checkpoints every 5 minutes, and a later call of
@@ -256,7 +257,7 @@ def medium_table6_study(work, level, accurate=False):
 
 # The fine pull-off's variants: case -> (work name, Loading/Jump entries). Shifted Newton's descents refactor by
 # cost (a fine factorization is dear); the trust region keeps its factors as a preconditioner instead.
-FINE_60 = {'fine-pull-off-60': ('fine-60', {'refactor': 'cost'}),
+FINE_60 = {'fine-pull-off-60': ('fine-60', {'method': 'shifted newton', 'refactor': 'cost'}),
            'fine-pull-off-60-trust-region': ('fine-60-trust-region', {'method': 'trust region'})}
 
 

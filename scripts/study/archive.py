@@ -8,7 +8,7 @@ import shutil
 from convergence import EQUAL_AREA_SIZE
 from curves import pad_slip, pull_off_summary
 from run_lock import directory_lock
-from study.runs import complete
+from study.runs import complete, stopped
 from study.scenes import DEPENDS, OVERRIDES, ROOT
 from study.tables import STICTION_RUNS
 
@@ -125,8 +125,7 @@ def put_back_as_stopped(work, runs, suffix, needed):
     restored = []
     for level, scene in runs:
         kept, directory = os.path.join(ARCHIVE, level, scene + suffix), os.path.join(work, level)
-        if not os.path.exists(os.path.join(kept, needed)) or complete(directory, scene) or any(
-                os.path.exists(os.path.join(directory, scene + s)) for s in ('.partial', '.incomplete')):
+        if not os.path.exists(os.path.join(kept, needed)) or complete(directory, scene) or stopped(directory, scene):
             continue
         put_back(kept, os.path.join(directory, scene + '.incomplete'), os.path.join(directory, scene + '.log'))
         restored.append((level, scene))

@@ -32,6 +32,11 @@ def started(work, scene):
     return complete(work, scene) or os.path.exists(os.path.join(work, scene + '.incomplete', 'curve.csv'))
 
 
+def stopped(work, scene):
+    """A stopped run of it is there to resume: <scene>.partial/ (killed) or <scene>.incomplete/ (stopped)."""
+    return any(os.path.isdir(os.path.join(work, scene + suffix)) for suffix in ('.partial', '.incomplete'))
+
+
 def checkpoint_copy(work, level, rotation, theta):
     """The file the rotation's part up to its checkpoint at theta [deg] leaves (a workflow job's output): its
     checkpoints, the one at theta among them."""

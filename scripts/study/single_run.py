@@ -33,7 +33,7 @@ from study.app import APP, RUN_ENVIRONMENT, copy_restart, launch, memory_estimat
 from study.archive import (archive, archive_ended, archiving, carry, restore, restore_ended,  # noqa: E402
                            restore_stopped)
 from study.progress import progress, step_lines  # noqa: E402
-from study.runs import checkpoint_copy, complete  # noqa: E402
+from study.runs import checkpoint_copy, complete, stopped  # noqa: E402
 from study.scenes import DEPENDS, OVERRIDES, parse_override, restart_angle, scene_file  # noqa: E402
 
 
@@ -89,7 +89,7 @@ def run_app(directory, level, scene, ranks, launcher, options=(), carrying=False
     exit status. Interrupted (Ctrl-C), the app stops at its next converged state and checkpoints it: waited for."""
     xml = scene_file(directory, level, scene)
     resume, refusal = resumable(directory, xml)
-    if not resume and any(os.path.isdir(os.path.join(directory, scene + s)) for s in ('.partial', '.incomplete')):
+    if not resume and stopped(directory, scene):
         print(f'[{level} {scene}] its stopped run cannot be resumed, so it starts again: {refusal}', flush=True)
     log_path = os.path.join(directory, scene + '.log')
     seen = len(step_lines(log_path)) if resume else 0   # the lines a stopped run showed are not shown again

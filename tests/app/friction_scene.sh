@@ -154,7 +154,8 @@ passed "a friction run from a frictionless state, anchored there"
 
 # A run anchored at its restart state measures its tangential tractions from those anchors (stored with its
 # checkpoints): a restart from its last state with the anchors undeformed is refused by name; --resume goes on with
-# them, also with another 'Loading/Jump/maximum iterations' (the one change it accepts), and keeps the stopped rows.
+# them, also with another 'Loading/Jump/maximum iterations' (a change of the scene it accepts), and keeps the stopped
+# rows.
 from_8="<Parameter name=\"restart file\" type=\"string\" value=\"checkpointed/checkpoints.h5\"/>
   <Parameter name=\"restart theta_y\" type=\"double\" value=\"8\"/>"
 anchor='s#<ParameterList name="Friction">#<Parameter name="stiction anchors" type="string" value="restart state"/>&#'
@@ -176,7 +177,8 @@ passed "a restart with other anchors refused"
 friction anchored 16 0.3 "$from_8
   <ParameterList name=\"Jump\"><Parameter name=\"maximum iterations\" type=\"int\" value=\"500\"/></ParameterList>" |
   sed "$anchor" > anchored-more.xml
-"$app" anchored-more.xml --resume > anchored-more.log 2>&1 || { fail "resuming the anchored run"; tail -5 anchored-more.log; }
+"$app" anchored-more.xml --resume > anchored-more.log 2>&1 ||
+  { fail "resuming the anchored run"; tail -5 anchored-more.log; }
 /usr/bin/python3 - <<'PY' || fail "the resumed anchored run"
 import csv
 stopped, resumed = (list(csv.DictReader(open(name))) for name in ('anchored-stopped.csv', 'anchored/curve.csv'))

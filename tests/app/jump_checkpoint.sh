@@ -7,8 +7,8 @@
 # takes a dozen iterations. Capped at 6 descent iterations (and checkpointing after every one), the run stops with
 # the descent half done; restarted from its last state with the default cap, it must report going on from iteration
 # 6, take as many descent iterations in all as the whole jump did, and end at 30 deg in the uninterrupted run's
-# state; `--resume` with a larger cap and the trust region (changes of the scene it accepts) ends there too. A SIGTERM inside the
-# descent stops the run there, and `--resume` finishes the jump.
+# state; `--resume` with a larger cap and the trust region (changes of the scene it accepts) ends there too. A
+# SIGTERM inside the descent stops the run there, and `--resume` finishes the jump.
 # usage: jump_checkpoint.sh <spatula>
 set -u
 app=$1
@@ -77,7 +77,8 @@ import csv
 a, b = (list(csv.DictReader(open(f'{name}/curve.csv')))[-1] for name in ('reference', 'capped'))
 assert abs(float(b['theta_y_deg']) - 30.0) < 1e-9, b['theta_y_deg']
 assert abs(float(a['M_y_nNnm']) - float(b['M_y_nNnm'])) <= 1e-6 * abs(float(a['M_y_nNnm'])), (a, b)
-print(f"--resume with 500 jump iterations instead of 6, by the trust region: M_y at 30 deg {float(b['M_y_nNnm']):.6f} nN nm")
+print(f"--resume with 500 jump iterations instead of 6, by the trust region: M_y at 30 deg "
+      f"{float(b['M_y_nNnm']):.6f} nN nm")
 PY
 # SIGTERM inside the descent: the run stops after the descent's current iteration with the descent checkpointed
 # (exit 143), and `--resume` finishes the jump and reaches the uninterrupted run's final state. The signal is sent
