@@ -158,5 +158,36 @@ assert abs(float(a[-1]['u_x_nm'])) > 1e-3, 'no tangential travel: the test could
 print(f"resumed stiction pull-off: {len(b)} rows as uninterrupted to 1e-6 (u_x {float(b[-1]['u_x_nm']):.4f} nm)")
 PY
 
+# A carried stopped run (run-study.py --carry keeps its checkpoints, curve and scene, not its fields) resumed past
+# several field intervals: its fields start again at the resumed state, and mesh.h5 and the states index hold exactly
+# the states the resumed run wrote, numbered from 0, at its steps divisible by the interval and its last one.
+tight_scene carried 40 "" "" "$every_step"'<Parameter name="field interval" type="int" value="2"/>' > carried.xml
+"$app" carried.xml > carried.log 2>&1 &
+pid=$!
+wait_for_step carried.log 3 || fail "the run to carry did not start"
+kill -TERM "$pid"
+wait "$pid"
+rm -f carried.incomplete/mesh.h5 carried.incomplete/mesh*.xmf
+stopped_at=$(tail -n 1 carried.incomplete/curve.csv | cut -d, -f1)
+"$app" carried.xml --resume > carried-resumed.log 2>&1 || { fail "--resume of the carried run"; tail -3 carried-resumed.log; }
+grep -q "field states cannot be kept" carried-resumed.log || fail "the carried run's resume does not say its fields start again"
+/usr/bin/python3 - carried "$stopped_at" <<'PY' || fail "the carried run's fields are not the states it wrote"
+import csv, re, sys
+import h5py
+directory, stopped_at = sys.argv[1], int(sys.argv[2])
+rows = [r for r in csv.DictReader(open(f'{directory}/curve.csv')) if int(r['step']) > stopped_at]
+expected = [float(r['theta_y_deg']) for r in rows if int(r['step']) % 2 == 0]
+if int(rows[-1]['step']) % 2:
+    expected.append(float(rows[-1]['theta_y_deg']))
+with h5py.File(f'{directory}/mesh.h5', 'r') as fields:
+    names = sorted(fields['states'])
+    times = [float(fields['states'][name]['time'][0]) for name in names]
+assert names == [f'{k:06d}' for k in range(len(names))], names
+assert len(times) == len(expected) >= 3 and all(abs(a - b) < 1e-9 for a, b in zip(times, expected)), (times, expected)
+indexed = [float(t) for t in re.findall(r'<Time Value="([^"]+)"', open(f'{directory}/mesh_states.xmf').read())]
+assert len(indexed) == len(times) and all(abs(a - b) < 1e-4 for a, b in zip(indexed, times)), (indexed, times)
+print(f'carried run resumed at step {stopped_at}: {len(times)} field states from there, indexed')
+PY
+
 [ "$failures" -eq 0 ] && echo "interrupted runs: stopped cleanly, resumable, never complete-looking"
 exit "$failures"
