@@ -15,7 +15,8 @@ remains; the app's own output in <work>/<level>/<scene>.log).
 Stopping and resuming: a study can be stopped at any moment (Ctrl-C, kill). Every run
 checkpoints its last converged state every few minutes (Output/checkpoint interval); the next `run-study.py` of the
 study goes on with each stopped run from there (`spatula --resume`) and repeats only the steps after the checkpoint
-(Snakemake's --rerun-incomplete).
+(Snakemake's --rerun-incomplete). A stopped run the app refuses to resume (its scene changed in a way --resume
+does not accept) starts again, and the stopped one is kept in <work>/<level>/<scene>.refused/ with its log.
 
 Mesh level: the scenes in xml/studies/ are written for the medium mesh and tables 4 and 6, the stiction pull-off (it
 restarts from the medium rotation) and the rough study run on it. The sweeps (gamma-W, gamma-L: six rotations and

@@ -1,8 +1,10 @@
 """How a study's run stands in its work directory: complete, started (complete or stopped with a curve), and how a
-pull-off ended."""
+pull-off ended; a stopped run the app refuses to resume kept aside."""
 import os
+import shutil
 
 from curves import pull_off_summary
+from run_lock import directory_lock
 from scenes import app_diagnosis
 
 
@@ -35,6 +37,26 @@ def started(work, scene):
 def stopped(work, scene):
     """A stopped run of it is there to resume: <scene>.partial/ (killed) or <scene>.incomplete/ (stopped)."""
     return any(os.path.isdir(os.path.join(work, scene + suffix)) for suffix in ('.partial', '.incomplete'))
+
+
+REFUSED_SUFFIX = '.refused'
+
+
+def keep_aside(work, scene):
+    """Moves the stopped run of <scene> (its directory and log) to <work>/<scene>.refused/ (replacing one kept there
+    before), under the run's lock so a live run is never moved; returns that directory. For a stopped run the app
+    refuses to resume, which a new run would otherwise replace."""
+    aside = os.path.join(work, scene + REFUSED_SUFFIX)
+    with directory_lock(os.path.join(work, scene)):
+        shutil.rmtree(aside, ignore_errors=True)
+        for suffix in ('.partial', '.incomplete'):
+            if os.path.isdir(os.path.join(work, scene + suffix)):
+                os.replace(os.path.join(work, scene + suffix), aside)
+                break
+        log = os.path.join(work, scene + '.log')
+        if os.path.exists(log):
+            shutil.copyfile(log, os.path.join(aside, 'run.log'))
+    return aside
 
 
 def checkpoint_copy(work, level, rotation, theta):

@@ -33,7 +33,7 @@ from study.app import APP, RUN_ENVIRONMENT, copy_restart, launch, memory_estimat
 from study.archive import (archive, archive_ended, archiving, carry, restore, restore_ended,  # noqa: E402
                            restore_stopped)
 from study.progress import progress, step_lines  # noqa: E402
-from study.runs import checkpoint_copy, complete, stopped  # noqa: E402
+from study.runs import REFUSED_SUFFIX, checkpoint_copy, complete, keep_aside, stopped  # noqa: E402
 from study.scenes import DEPENDS, OVERRIDES, parse_override, restart_angle, scene_file  # noqa: E402
 
 
@@ -90,7 +90,9 @@ def run_app(directory, level, scene, ranks, launcher, options=(), carrying=False
     xml = scene_file(directory, level, scene)
     resume, refusal = resumable(directory, xml)
     if not resume and stopped(directory, scene):
-        print(f'[{level} {scene}] its stopped run cannot be resumed, so it starts again: {refusal}', flush=True)
+        aside = keep_aside(directory, scene)
+        print(f'[{level} {scene}] its stopped run cannot be resumed ({refusal}), so it starts again; the stopped run '
+              f'is kept in {aside}/', flush=True)
     log_path = os.path.join(directory, scene + '.log')
     seen = len(step_lines(log_path)) if resume else 0   # the lines a stopped run showed are not shown again
     work = os.path.dirname(directory)

@@ -2,8 +2,8 @@
 """run-study.py --carry, on manufactured run directories: a running run's checkpoints, curve, scene and log are kept in
 the archive's <scene>.stopped/ (not its fields), again only when its checkpoints file changed; a new work directory
 gets the kept run back as a stopped run (<scene>.incomplete/ and its log) for `spatula --resume`, but not over a run
-it already has; a workflow job with --carry keeps the state its app checkpoints while it runs; a run its load path
-ended (a solver failure) is kept and restored as it ended.
+it already has; a workflow job with --carry keeps the state its app checkpoints while it runs; a stopped run the app
+refuses to resume is kept aside; a run its load path ended (a solver failure) is kept and restored as it ended.
 
     study_carry.py"""
 import os
@@ -89,6 +89,24 @@ with tempfile.TemporaryDirectory() as root:
     check(status == 0 and os.path.exists(kept) and open(kept).read() == 'state 3\n',
           f'a job with --carry: exit {status}, kept {os.path.exists(kept)}')
     check('step 2' in open(os.path.join(directory, 'rough-z0-0.log')).read(), "the app's output in the run's log")
+    # A stopped run the app refuses to resume is kept aside with its log (the new run would replace it), and the job
+    # says why, in the app's words.
+    write(fake, '#!/bin/sh\ncase "$*" in *--validate-only*) echo "input error: other Loading parameters" >&2; exit 2;; '
+                'esac\necho "step 1     rotation  theta_y 6.000    deg  u_z 1.0       nm  newton 2  neg.piv 0  1.0 s"\n')
+    from study import app as study_app
+    study_app.APP = fake   # (its --validate-only is what refuses)
+    write(os.path.join(directory, 'rough-z0-4.incomplete', 'checkpoints.h5'), 'hours of work')
+    write(os.path.join(directory, 'rough-z0-4.log'), 'the stopped run')
+    from contextlib import redirect_stdout
+    from io import StringIO
+    said = StringIO()
+    with redirect_stdout(said):
+        status = single_run.run_app(directory, 'coarse', 'rough-z0-4', 1, 'mpiexec')
+    aside = os.path.join(directory, 'rough-z0-4' + single_run.REFUSED_SUFFIX)
+    check(status == 0 and not os.path.exists(os.path.join(directory, 'rough-z0-4.incomplete'))
+          and open(os.path.join(aside, 'checkpoints.h5')).read() == 'hours of work'
+          and open(os.path.join(aside, 'run.log')).read() == 'the stopped run', 'the refused stopped run kept aside')
+    check('other Loading parameters' in said.getvalue() and aside in said.getvalue(), f'the job said {said.getvalue()!r}')
 
     # A run the app ended with a solver failure of its load path: kept with its curve, FAILURE.txt and log (not its
     # checkpoints), restored as it ended instead of being run again; not one a signal or the memory ended.
