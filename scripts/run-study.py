@@ -32,7 +32,8 @@ this way with older solver settings).
 
 Carrying a long run to another machine: with `--carry` the last checkpointed state of every run still going (its
 checkpoints, curve, scene and log) is copied to results/<level>/<scene>.stopped/ each time the run writes it;
-commit that, and the same command on a new machine resumes the run from there. `--scene NAME` (repeatable) runs only
+commit that, and the same command on a new machine resumes the run from there (the shear study's tables show such a
+run with its values so far, "not finished"). `--scene NAME` (repeatable) runs only
 those scenes of the study, e.g. the fine runs still to come:
 `run-study.py all --mesh fine --carry --scene peel-rotation --scene pull-off-75 --scene rough-z0-4`.
 
@@ -59,7 +60,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from convergence import LEVELS  # noqa: E402
 from run_lock import DirectoryInUse  # noqa: E402
 from study.archive import (ARCHIVE, ENDED_SUFFIX, STOPPED_SUFFIX, archive, archiving, linked_equal_area,  # noqa: E402
-                           restore, restore_ended)
+                           restore, restore_ended, restore_stopped)
 from study.figures import field_pictures, plots  # noqa: E402
 from study.app import APP  # noqa: E402
 from study.runs import complete, started as run_started  # noqa: E402
@@ -133,6 +134,8 @@ def main():
             (STOPPED_SUFFIX, STOPPED_SUFFIX + '.copying', STOPPED_SUFFIX + '.old', ENDED_SUFFIX, ENDED_SUFFIX + '.copying'))])
         restore_ended(arguments.work, [(level, name[:-len(ENDED_SUFFIX)]) for level, name in kept
                                        if name.endswith(ENDED_SUFFIX)])   # the runs the app ended, as they ended
+        restore_stopped(arguments.work, [(level, name[:-len(STOPPED_SUFFIX)]) for level, name in kept
+                                         if name.endswith(STOPPED_SUFFIX)])   # carried runs still going, so far
     if arguments.no_run:   # nothing ran: say how many of the study's runs the tables can use
         missing = [scene for level, scene in runs if not run_started(os.path.join(arguments.work, level), scene)]
         print(f'study {arguments.study}: {len(runs) - len(missing)} of {len(runs)} runs there to tabulate '

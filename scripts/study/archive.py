@@ -109,6 +109,7 @@ def carry(work, level, scene, carried):
             os.replace(kept, kept + '.old')
         os.replace(kept + '.copying', kept)
         shutil.rmtree(kept + '.old', ignore_errors=True)
+        shutil.rmtree(os.path.join(ARCHIVE, level, scene + ENDED_SUFFIX), ignore_errors=True)   # it goes on: not ended
         carried[checkpoints] = stamp
         return
 
@@ -165,6 +166,7 @@ def archive_ended(work, level, scene):
     shutil.copyfile(log, os.path.join(kept + '.copying', 'run.log'))
     shutil.rmtree(kept, ignore_errors=True)
     os.replace(kept + '.copying', kept)
+    shutil.rmtree(os.path.join(ARCHIVE, level, scene + STOPPED_SUFFIX), ignore_errors=True)   # it has ended since
     return True
 
 

@@ -64,17 +64,26 @@ def summaries(work):
 # substrate (the Lennard-Jones cut-off, beyond the reach of the adhesion it started in) has slid off: a way to let go
 # of its own, not a solver stop.
 SLID_OFF_NM = 10.0
+NOT_FINISHED = 'not finished: values up to its last checkpoint'
+
+
+RESUMED = 'spatula: resuming the stopped run'
 
 
 def outcome(work, scene):
     """How a pull ended, as its run says: (detached?, words): detached (the app's detachment line), held on to its
-    final travel, slid off (SLID_OFF_NM) or stopped (with the app's diagnosis)."""
+    final travel, slid off (SLID_OFF_NM), stopped (with the app's diagnosis) or not finished (a run still going or
+    interrupted, such as one carried in results/<level>/<scene>.stopped/). Only the log since the run's last resume
+    counts: a failure before it is what the resume went on from."""
     log = os.path.join(work, scene + '.log')
     text = open(log).read() if os.path.exists(log) else ''
+    text = text[text.rfind(RESUMED):] if RESUMED in text else text
     if complete(work, scene):
         detachment = [line for line in text.splitlines() if line.startswith('detachment:')]
         return (True, 'detached') if detachment else (False, 'held on to the final travel')
-    diagnosis = app_diagnosis(text) or 'did not finish'
+    diagnosis = app_diagnosis(text)
+    if not diagnosis:
+        return False, NOT_FINISHED
     kept = re.search(r'jump past the instability failed.*kept (\d+ %) of the adhesion energy'
                      r'(?:, its adhering part slid ([0-9.]+) nm)?', diagnosis)
     if kept and kept.group(2) and float(kept.group(2)) > SLID_OFF_NM:   # the pad neither settled nor came off
@@ -90,7 +99,8 @@ def cell(summary):
     if summary is None:
         return 'not run'
     mark = '' if summary['detached'] else (' (held on)' if summary['complete'] else
-                                           ' (slid off)' if summary['outcome'].startswith('slid off') else ' (stopped)')
+                                           ' (slid off)' if summary['outcome'].startswith('slid off') else
+                                           ' (not finished)' if summary['outcome'] == NOT_FINISHED else ' (stopped)')
     return f"{summary['pull_off_nN']:.2f}{mark}"
 
 
@@ -102,7 +112,7 @@ def lines(work, level):
                 'the law, with the end face held across the pull or free. "held on": the pull reached its final '
                 'travel (600 nm) still attached; "slid off": after a snap no stable state followed while the part of the '
                 f'pad still adhering slid more than {SLID_OFF_NM:g} nm along the substrate; "stopped": the run ended '
-                'before detachment.\n']
+                'before detachment; "not finished": a run still going, its values up to its last checkpoint.\n']
     columns = [(law, constraint) for law in LAWS for constraint in CONSTRAINTS[law]]
     markdown.append('| beta [deg] | ' + ' | '.join(f'{law} {constraint}' for law, constraint in columns) + ' |')
     markdown.append('|---|' + '---|' * len(columns))

@@ -73,7 +73,8 @@ check('| amontons | free | 120 | 28.00 | 29.40 | +5.0 % |' in table, f'mesh depe
 check('| 135 |' not in table, 'a point on one level has a mesh dependence row')
 check(shear_tables.mesh_dependence({'coarse': {('amontons', 'free', 120): point}}) == '', 'one level: a table')
 
-# The outcome is the app's: its detachment line, else the final travel reached (complete), else stopped.
+# The outcome is the app's: its detachment line, else the final travel reached (complete), else stopped (its
+# diagnosis) or not finished.
 with tempfile.TemporaryDirectory() as work:
     os.makedirs(os.path.join(work, 'a'))
     open(os.path.join(work, 'a', 'curve.csv'), 'w').write('step\n')
@@ -81,8 +82,8 @@ with tempfile.TemporaryDirectory() as work:
     check(shear_tables.outcome(work, 'a') == (True, 'detached'), f"outcome a: {shear_tables.outcome(work, 'a')}")
     open(os.path.join(work, 'a.log'), 'w').write('step 1 ...\n')
     check(shear_tables.outcome(work, 'a') == (False, 'held on to the final travel'), 'outcome without detachment')
-    check(not shear_tables.outcome(work, 'b')[0] and shear_tables.outcome(work, 'b')[1].startswith('stopped'),
-          f"outcome of a run without a curve: {shear_tables.outcome(work, 'b')}")
+    check(shear_tables.outcome(work, 'b') == (False, shear_tables.NOT_FINISHED),
+          f"outcome of a run without a log: {shear_tables.outcome(work, 'b')}")
     open(os.path.join(work, 'b.log'), 'w').write(
         'step 1 ...\nspatula: solver failure at step 302, lift = 287.783: jump past the instability failed: no stable '
         "state within 500 iterations (311 descent steps); the descent's last state kept 26 % of the adhesion energy; "
@@ -98,6 +99,13 @@ with tempfile.TemporaryDirectory() as work:
             "stable state within 500 iterations (311 descent steps); the descent's last state kept 88 % of the adhesion "
             f'energy, its adhering part slid {slip} nm along the substrate (mean); the descent state is checkpointed\n')
         check(shear_tables.outcome(work, 'b') == (False, expected), f"slip {slip}: {shear_tables.outcome(work, 'b')}")
+    # A run resumed after its failure (another jump limit, say) and still going: not finished, whatever the log
+    # said before its last resume.
+    open(os.path.join(work, 'b.log'), 'a').write('spatula: resuming the stopped run /w/b.incomplete\nstep 303 ...\n')
+    check(shear_tables.outcome(work, 'b') == (False, shear_tables.NOT_FINISHED),
+          f"a resumed run still going: {shear_tables.outcome(work, 'b')}")
+    check(shear_tables.cell(dict(point, detached=False, complete=False, outcome=shear_tables.NOT_FINISHED))
+          .endswith('(not finished)'), 'a pull still going is marked so')
     stopped = 'stopped: no stable state after a jump (its descent kept 88 % of the adhesion)'
     check(shear_tables.cell(dict(point, detached=False, complete=False, outcome=stopped)).endswith('(stopped)'),
           'a stopped pull is marked so')

@@ -124,6 +124,16 @@ with tempfile.TemporaryDirectory() as root:
     kept = os.path.join(study.ARCHIVE, 'coarse', 'shear-x' + study.ENDED_SUFFIX)
     check(sorted(os.listdir(kept)) == ['.spatula-output', 'FAILURE.txt', 'curve.csv', 'run.log'],
           f'an ended run kept: {sorted(os.listdir(kept))}')
+    # Carried again (resumed, with another jump limit, say), it is a run going on: its end is dropped; ended again,
+    # its carried state is.
+    carried = {}
+    study.carry(work, 'coarse', 'shear-x', carried)
+    check(os.path.isdir(os.path.join(study.ARCHIVE, 'coarse', 'shear-x' + study.STOPPED_SUFFIX))
+          and not os.path.exists(kept), 'a carried run still kept as ended')
+    study.archive_ended(work, 'coarse', 'shear-x')
+    check(os.path.isdir(kept) and not os.path.exists(os.path.join(study.ARCHIVE, 'coarse',
+                                                                  'shear-x' + study.STOPPED_SUFFIX)),
+          'an ended run still kept as carried')
     again = os.path.join(root, 'again')
     check(single_run.run(again, 'coarse', 'shear-x') == 1 and open(os.path.join(again, 'coarse', 'shear-x.incomplete',
                                                                                 'curve.csv')).read()
