@@ -141,13 +141,14 @@ def mesh_dependence(found_by_level):
         return ''
     markdown = ['### Mesh dependence of the pull-off force [nN]\n',
                 'Points run on more than one mesh level; the change between the two finest levels bounds the error of '
-                'the coarser one. A run that did not detach is marked as in the tables.\n',
+                'the coarser one. A run that did not detach is marked as in the tables; a run not finished has no change yet.\n',
                 '| law | across | beta | ' + ' | '.join(levels) + ' | change between the two finest |',
                 '|---|---|---|' + '---|' * (len(levels) + 1)]
     for key in shared:
         values = [found_by_level[level].get(key) for level in levels]
-        present = [v['pull_off_nN'] for v in values if v]
-        change = f'{100 * (present[-1] / present[-2] - 1):+.1f} %'
+        present = [v for v in values if v]
+        change = ('not yet' if any(v['outcome'] == NOT_FINISHED for v in present[-2:]) else
+                  f"{100 * (present[-1]['pull_off_nN'] / present[-2]['pull_off_nN'] - 1):+.1f} %")
         markdown.append(f'| {key[0]} | {key[1]} | {key[2]} | ' + ' | '.join(cell(v) for v in values) +
                         f' | {change} |')
     markdown.append('')

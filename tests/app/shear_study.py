@@ -65,13 +65,17 @@ for key, expected in (('pull_off_nN', 5.0), ('across_nN', 2.0), ('travel_at_peak
 check(shear_tables.pull_summary(rows[:1], beta) is None, 'a run still rotating has a pull summary')
 
 # The mesh dependence: a point run on two levels, its change between them; a point on one level only is left out.
-point = dict(summary, detached=True, complete=True)
+point = dict(summary, detached=True, complete=True, outcome='detached')
 table = shear_tables.mesh_dependence({'coarse': {('amontons', 'free', 120): dict(point, pull_off_nN=28.0),
                                                  ('amontons', 'free', 135): dict(point, pull_off_nN=56.0)},
                                       'medium': {('amontons', 'free', 120): dict(point, pull_off_nN=29.4)}})
 check('| amontons | free | 120 | 28.00 | 29.40 | +5.0 % |' in table, f'mesh dependence: {table}')
 check('| 135 |' not in table, 'a point on one level has a mesh dependence row')
 check(shear_tables.mesh_dependence({'coarse': {('amontons', 'free', 120): point}}) == '', 'one level: a table')
+going = dict(point, detached=False, complete=False, pull_off_nN=11.0, outcome=shear_tables.NOT_FINISHED)
+table = shear_tables.mesh_dependence({'coarse': {('amontons', 'free', 120): dict(point, pull_off_nN=28.0)},
+                                      'medium': {('amontons', 'free', 120): going}})
+check('| 28.00 | 11.00 (not finished) | not yet |' in table, f'a point not finished has a change: {table}')
 
 # The outcome is the app's: its detachment line, else the final travel reached (complete), else stopped (its
 # diagnosis) or not finished.
