@@ -2,8 +2,9 @@
 // slid along X (rotation and lift held). Once the whole contact face slides, the X force on the top face is the
 // sliding limit times the contact area, the energy dissipated grows by that force times the slide and the work of
 // the force balances it; slid back, the block sticks, then slides the other way at the opposite force. The
-// constant-strength limit makes these exact (tau_0 does not depend on the gap). Runs on 1 and 2 ranks (each rank's
-// faces keep their own history).
+// constant-strength limit makes these exact (tau_0 does not depend on the gap); with the extended Amontons limit
+// (return mapping) the block slides at mu (T_n + t_max) times the area, T_n the small normal traction the shear leaves,
+// and dissipates that force times the slide. Runs on 1 and 2 ranks (each rank's faces keep their own history).
 #include "analysis/load_stepping.hpp"
 #include "contact/adhesion.hpp"
 #include "discretization/discrete_system.hpp"
@@ -32,7 +33,7 @@ struct SlidingBlock {
   Teuchos::RCP<solvers::SpatulaModel> model;
   std::unique_ptr<solvers::NewtonSolver> newton;
 
-  SlidingBlock()
+  explicit SlidingBlock(contact::AdhesiveFriction::Limit limit = contact::AdhesiveFriction::Limit::constant_strength)
   {
     mesh::BoxParameters box;
     box.lengths = {a, 0.5 * a, height};
@@ -51,7 +52,7 @@ struct SlidingBlock {
     adhesion.lennard_jones.r_cut = 10.0;
     adhesion.substrate_height = -adhesion.lennard_jones.equilibrium_gap();
     adhesion.friction.law = adhesion.lennard_jones;
-    adhesion.friction.limit = contact::AdhesiveFriction::Limit::constant_strength;
+    adhesion.friction.limit = limit;
     adhesion.friction.strength = strength;
     adhesion.friction.stiffness = 5.0;
     auto comm = Teuchos::DefaultComm<int>::getComm();
@@ -116,4 +117,30 @@ TEST(FrictionSystem, ASlidingBlockPullsWithTheStrengthTimesTheAreaAndDissipatesI
             << " at 2 nm (dissipated " << second.sliding - first.sliding << " nN nm between), "
             << unloaded.slide_force << " back at 1.95 nm, " << path.last().slide_force << " back at 1 nm\n";
   EXPECT_GT(path.last().sliding, second.sliding + 0.5 * limit);
+}
+
+TEST(FrictionSystem, AnExtendedAmontonsBlockSlidesAtMuTimesTheStrongestAttractionAndDissipatesItsWork)
+{
+  SlidingBlock block(contact::AdhesiveFriction::Limit::extended_amontons);
+  analysis::LoadPath path(*block.model, *block.newton, nullptr, false);
+  analysis::StepParameters steps;
+  steps.initial = steps.maximum = 0.1;
+  const auto slide_to = [&](double u) {
+    return path.advance(Master::slide, u, MasterControl::moving(Master::slide), steps, 1.0, {});
+  };
+  contact::LennardJones law;   // the block's (its regularization does not reach the equilibrium gap)
+  const double limit = 0.3 * law.max_traction() * block.system->contact_area();   // mu t_max A, half model [nN]
+  ASSERT_FALSE(slide_to(1.0).has_value());
+  const auto first = path.last();
+  ASSERT_FALSE(slide_to(3.0).has_value());
+  const auto second = path.last();
+  std::cout << "extended Amontons: X force " << first.slide_force << " and " << second.slide_force
+            << " nN (mu t_max A = " << limit << " nN), dissipated over 2 nm " << second.sliding - first.sliding
+            << " nN nm\n";
+  // At the equilibrium gap the limit is mu t_max; the shear leaves a normal traction of about 1 % of t_max.
+  EXPECT_NEAR(first.slide_force, limit, 0.02 * limit);
+  EXPECT_NEAR(second.slide_force, first.slide_force, 1e-4 * limit);
+  EXPECT_NEAR(second.sliding - first.sliding, 2.0 * first.slide_force, 1e-3 * limit);
+  const double stored = (second.internal_energy + second.contact_energy) - (first.internal_energy + first.contact_energy);
+  EXPECT_NEAR(second.external_work - first.external_work, stored + (second.sliding - first.sliding), 1e-3 * limit);
 }
