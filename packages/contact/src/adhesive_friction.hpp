@@ -9,6 +9,8 @@
 //   stick (|t*| <= tau(g)):  t = t*,                          a unchanged,
 //   slip  (|t*| >  tau(g)):  t = tau(g) n,  n = t* / |t*|,     a = s - t / eps_T,
 // and the energy dissipated in the slip, tau(g) |a_new - a_old| (the elastic part eps_T |s - a|^2 / 2 is stored).
+// The history also keeps tau at its state; with `frozen` a step slides on that limit of the committed state instead
+// of tau(g) (an explicit limit: the step's energy does not depend on g through it).
 // The sliding limits (`Limit`):
 //   extended Amontons:   tau = mu (T_n(g) + t_max) C(g), T_n = -phi'(g) the Lennard-Jones normal traction (positive in
 //                        compression), t_max its strongest attraction: zero where the attraction is strongest, growing
@@ -29,6 +31,7 @@ namespace spatula::contact {
 struct FrictionHistory {
   double anchor[2] = {0.0, 0.0};   // where the tangential spring is relaxed [nm]
   double dissipated = 0.0;         // energy dissipated by sliding so far, per unit area [nN/nm]
+  double limit = 0.0;              // tau at this state [nN/nm^2]: with `frozen`, the committed one is a step's limit
 };
 
 struct FrictionResponse {
@@ -50,6 +53,7 @@ struct AdhesiveFriction {
   double stiffness = 10.0;     // eps_T [nN/nm^3], the elastic stick's tangential stiffness per unit area
   double cutoff = 1.0;         // g_c [nm]
   bool variational = false;    // the contact integrand's update (friction_integrand.hpp): false the return mapping
+  bool frozen = false;         // (with variational) a step slides on the limit of its committed state, not of its gap
 
   // C(g), C'(g) and C''(g): 1 up to g_c, smootherstep to 0 at 1.25 g_c.
   KOKKOS_INLINE_FUNCTION void switch_off(double g, double& c, double& dc, double& d2c) const
@@ -99,6 +103,11 @@ struct AdhesiveFriction {
     out.trial = in;
     double tau, dtau;
     sliding_limit(g, tau, dtau, out.limit_curvature);
+    out.trial.limit = tau;
+    if (frozen) {   // the step's limit does not depend on its gap: no normal-tangential coupling
+      tau = in.limit;
+      dtau = out.limit_curvature = 0.0;
+    }
     out.limit = tau;
     out.limit_slope = dtau;
     const double trial[2] = {stiffness * (s[0] - in.anchor[0]), stiffness * (s[1] - in.anchor[1])};

@@ -15,7 +15,10 @@
 // symmetric. The variational update (true: Ortiz and Stainier's variational constitutive updates) takes
 // the whole derivative of psi: the normal traction gains tau' times the step's slip (which vanishes with the step),
 // the energy is the step's potential and the tangent is symmetric (tau'' included), so the energy line search, the
-// jumps' descents and LDL^T factors see a consistent problem. Without a history (the front diagnostics'
+// jumps' descents and LDL^T factors see a consistent problem. With the extended Amontons limit its normal term
+// tau' times the slip pulls a sliding point towards the strongest attraction (docs/adhesion.md). The frozen update
+// (AdhesiveFriction::frozen, with variational) slides a step on the limit of the committed state: the same energy
+// without that term, a symmetric tangent without the coupling. Without a history (the front diagnostics'
 // five-argument evaluate) the integrand is the normal law alone.
 #include "contact/adhesive_friction.hpp"
 #include "contact/contact_face.hpp"
@@ -25,7 +28,9 @@ namespace spatula::contact {
 struct AdhesiveFrictionIntegrand {
   FrictionlessIntegrand<FlatSubstrate> normal;
   AdhesiveFriction friction;
-  static constexpr int history_size = 3;   // sliding anchor (X, Y) relative to A [nm], dissipated [nN/nm]
+  // sliding anchor (X, Y) relative to A [nm], dissipated [nN/nm], 1 + the limit tau at the state [nN/nm^2] (0: no
+  // state committed yet, nor kept by a checkpoint written before this value was: the limit at the anchors' gap)
+  static constexpr int history_size = 4;
   static constexpr int dissipated_index = 2;
   static constexpr bool tangential = true;   // holds the pad along the substrate
   KOKKOS_INLINE_FUNCTION bool symmetric_tangent() const { return friction.variational; }
@@ -60,10 +65,18 @@ struct AdhesiveFrictionIntegrand {
     history.anchor[0] = in[0];
     history.anchor[1] = in[1];
     history.dissipated = in[2];
+    if (in[3] > 0.0) {
+      history.limit = in[3] - 1.0;
+    } else if (friction.frozen) {   // the anchors' state is the committed one (the undeformed or the re-anchored pad)
+      double tau, dtau, d2tau;
+      friction.sliding_limit(normal.gap(A), tau, dtau, d2tau);
+      history.limit = tau;
+    }
     const FrictionResponse response = friction.evaluate(g, s, history);
     out[0] = response.trial.anchor[0];
     out[1] = response.trial.anchor[1];
     out[2] = response.trial.dissipated;
+    out[3] = 1.0 + response.trial.limit;
     const double tau = response.limit, stiffness = friction.stiffness;
     const double travel = ::sqrt((s[0] - in[0]) * (s[0] - in[0]) + (s[1] - in[1]) * (s[1] - in[1]));
     phi += response.sliding ? tau * travel - 0.5 * tau * tau / stiffness : 0.5 * stiffness * travel * travel;

@@ -35,8 +35,10 @@ void declare_friction(Teuchos::ParameterList& adhesion)
                              "return mapping: the sliding law as published (its tangent not symmetric); variational: "
                              "each step minimizes its incremental energy (the normal traction gains tau'(g) times the "
                              "step's slip, which vanishes with the step; a symmetric tangent, an energy the line "
-                             "search and the jumps' descents can use)",
-                             {"return mapping", "variational"});
+                             "search and the jumps' descents can use); frozen limit: the same with each step sliding "
+                             "on the limit of its committed state (no tau' term: a jump's slip is charged at the "
+                             "limit it started from)",
+                             {"return mapping", "variational", "frozen limit"});
   parameters::declare_double(friction, "cut-off", d.cutoff,
                              "gap g_c up to which the limit acts in full; it fades to zero at 1.25 g_c [nm]",
                              Range::positive());
@@ -52,7 +54,9 @@ AdhesiveFriction read_friction(const Teuchos::ParameterList& adhesion, const Len
   friction.strength = list.get<double>("strength");
   friction.stiffness = list.get<double>("stiffness");
   friction.cutoff = list.get<double>("cut-off");
-  friction.variational = list.get<std::string>("update") == "variational";
+  const auto update = list.get<std::string>("update");
+  friction.variational = update != "return mapping";
+  friction.frozen = update == "frozen limit";
   if (1.25 * friction.cutoff > 0.5 * law.r_cut)
     parameters::fail("Adhesion/Friction/cut-off", friction.cutoff,
                      "must be at most 0.4 'Adhesion/cut-off' = " + std::to_string(0.4 * law.r_cut) +

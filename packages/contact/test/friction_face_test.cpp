@@ -141,7 +141,8 @@ double slid_face_force(const contact::AdhesiveFrictionIntegrand& law, double sli
 void expect_stick_slip_stick(const contact::AdhesiveFrictionIntegrand& law, double tau)
 {
   const double area = 12.0, stiffness = law.friction.stiffness, onset = tau / stiffness;   // slip starts at tau / eps
-  std::vector<double> committed(9 * 3, 0.0), trial(9 * 3);
+  constexpr int kept = contact::AdhesiveFrictionIntegrand::history_size;
+  std::vector<double> committed(9 * kept, 0.0), trial(9 * kept);
   double dissipated;
   // Stick: the elastic spring.
   EXPECT_NEAR(slid_face_force(law, 0.5 * onset, committed, trial, dissipated), stiffness * 0.5 * onset * area,
@@ -186,6 +187,20 @@ TEST(FrictionFace, TheVariationalUpdateIsTheDerivativeOfItsEnergyWithASymmetricT
   EXPECT_FALSE(contact::symmetric_tangent(integrand(contact::AdhesiveFriction::Limit::extended_amontons)));
 }
 
+// The frozen limit: the variational energy with each point sliding on the limit its history holds (here that of the
+// equilibrium gap, set by the first evaluation from the anchors), so the traction does not depend on the gap in slip.
+TEST(FrictionFace, TheFrozenLimitIsTheDerivativeOfItsEnergyWithoutNormalCoupling)
+{
+  for (auto limit : {contact::AdhesiveFriction::Limit::extended_amontons,
+                     contact::AdhesiveFriction::Limit::constant_strength}) {
+    auto law = integrand(limit);
+    law.friction.variational = law.friction.frozen = true;
+    EXPECT_TRUE(contact::symmetric_tangent(law));
+    expect_variational<elements::Quad4Surface>(law);
+    expect_variational<elements::Quad9Surface>(law);
+  }
+}
+
 TEST(FrictionFace, ConstantStrengthSlidesAtTheStrengthTimesTheArea)
 {
   const auto law = integrand(contact::AdhesiveFriction::Limit::constant_strength);
@@ -204,7 +219,8 @@ TEST(FrictionFace, ExtendedAmontonsAtTheEquilibriumGapSlidesAtMuTimesTheStronges
 TEST(FrictionFace, UndeformedStartIsTractionFreeAndStickStoresTheSpringEnergy)
 {
   const auto law = integrand(contact::AdhesiveFriction::Limit::constant_strength);
-  std::vector<double> none(27, 0.0), trial(27);
+  constexpr int kept = contact::AdhesiveFrictionIntegrand::history_size;
+  std::vector<double> none(9 * kept, 0.0), trial(9 * kept);
   double dissipated;
   EXPECT_NEAR(slid_face_force(law, 0.0, none, trial, dissipated), 0.0, 1e-14);
   double X[9][3] = {}, u[9][3] = {}, r_friction[27], r_frictionless[27];

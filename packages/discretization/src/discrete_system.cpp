@@ -296,13 +296,20 @@ void DiscreteSystem::set_contact_history(const std::vector<double>& all)
 {
   auto& impl = *implementation_;
   const std::size_t per_face = impl.history_per_face();
-  if (all.size() != per_face * impl.space.faces.size())
+  if (per_face == 0 && all.empty()) return;
+  const std::size_t size = per_face == 0 ? 0 : impl.options.contact->history_size(), points = per_face / (size ? size : 1);
+  // A history written before the law's last value was added (one value fewer per point) is read with that value 0.
+  const std::size_t given = all.size() == per_face * impl.space.faces.size()                ? size
+                            : size > 1 && all.size() == points * (size - 1) * impl.space.faces.size() ? size - 1
+                                                                                                      : 0;
+  if (given == 0)
     throw std::runtime_error("a contact history of " + std::to_string(all.size()) + " values given, the system's has " +
                              std::to_string(per_face * impl.space.faces.size()));
-  if (per_face == 0) return;
   auto local = Kokkos::create_mirror_view(impl.committed_history);
   for (std::size_t f = 0; f < impl.faces.size(); ++f)
-    for (std::size_t k = 0; k < per_face; ++k) local(f * per_face + k) = all[impl.faces[f] * per_face + k];
+    for (std::size_t p = 0; p < points; ++p)
+      for (std::size_t k = 0; k < size; ++k)
+        local(f * per_face + p * size + k) = k < given ? all[(impl.faces[f] * points + p) * given + k] : 0.0;
   Kokkos::deep_copy(impl.committed_history, local);
 }
 
