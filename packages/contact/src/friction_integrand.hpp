@@ -77,6 +77,15 @@ struct AdhesiveFrictionIntegrand {
     out[1] = response.trial.anchor[1];
     out[2] = response.trial.dissipated;
     out[3] = 1.0 + response.trial.limit;
+    if (friction.frozen) {   // the next step slides on this state's limit: the spring's energy above it is dissipated
+      const double t2 = response.traction[0] * response.traction[0] + response.traction[1] * response.traction[1];
+      const double limit = response.trial.limit;
+      if (t2 > limit * limit) {
+        const double scale = limit / ::sqrt(t2);
+        for (int i = 0; i < 2; ++i) out[i] = s[i] - scale * response.traction[i] / friction.stiffness;
+        out[2] += 0.5 * (t2 - limit * limit) / friction.stiffness;
+      }
+    }
     const double tau = response.limit, stiffness = friction.stiffness;
     const double travel = ::sqrt((s[0] - in[0]) * (s[0] - in[0]) + (s[1] - in[1]) * (s[1] - in[1]));
     phi += response.sliding ? tau * travel - 0.5 * tau * tau / stiffness : 0.5 * stiffness * travel * travel;

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -120,7 +121,7 @@ void expect_variational(const contact::AdhesiveFrictionIntegrand& law)
 
 // A flat face at the equilibrium gap slid uniformly along X by `slide` from the history `in`: its X force.
 double slid_face_force(const contact::AdhesiveFrictionIntegrand& law, double slide, const std::vector<double>& in,
-                       std::vector<double>& out, double& dissipated)
+                       std::vector<double>& out, double& dissipated, double lift = 0.0)
 {
   using Surface = elements::Quad9Surface;
   double X[9][3], u[9][3], r[27];
@@ -129,7 +130,8 @@ double slid_face_force(const contact::AdhesiveFrictionIntegrand& law, double sli
     X[k][1] = 1.5 * (test::face_node_parameters[k][1] + 1.0);
     X[k][2] = 0.0;
     u[k][0] = slide;
-    u[k][1] = u[k][2] = 0.0;
+    u[k][1] = 0.0;
+    u[k][2] = lift;
   }
   const auto result = contact::contact_face<Surface>(law, X, X, u, 3, r, nullptr, in.data(), out.data());
   dissipated = result.dissipated;
@@ -236,4 +238,34 @@ TEST(FrictionFace, UndeformedStartIsTractionFreeAndStickStoresTheSpringEnergy)
   EXPECT_NEAR(with.energy - without.energy, 0.5 * law.friction.stiffness * slide * slide * with.area,
               1e-12 * std::abs(without.energy));
   for (int k = 0; k < 9; ++k) EXPECT_NEAR(r_friction[3 * k + 2], r_frictionless[3 * k + 2], 1e-14);
+}
+
+// The frozen limit: a face sliding on the limit of its committed state (the equilibrium gap), then lifted so that its
+// limit falls, still slides on the committed limit in that step; committed there, its spring's energy above the new
+// limit is dissipated, so the state's energy and dissipation are those the next step starts from.
+TEST(FrictionFace, TheFrozenLimitLetsTheSpringAboveAFallenLimitGoAsDissipation)
+{
+  auto law = integrand(contact::AdhesiveFriction::Limit::extended_amontons);
+  law.friction.variational = law.friction.frozen = true;
+  constexpr int kept = contact::AdhesiveFrictionIntegrand::history_size;
+  const double area = 12.0, stiffness = law.friction.stiffness;
+  double high, dtau, d2tau, low;
+  law.friction.sliding_limit(law.normal.gap(std::array<double, 3>{0.0, 0.0, 0.0}.data()), high, dtau, d2tau);
+  const double lift = 0.02;   // towards the strongest attraction: the limit falls
+  law.friction.sliding_limit(law.normal.gap(std::array<double, 3>{0.0, 0.0, lift}.data()), low, dtau, d2tau);
+  ASSERT_LT(low, 0.9 * high);
+  std::vector<double> committed(9 * kept, 0.0), trial(9 * kept);
+  double dissipated;
+  const double slide = 3.0 * high / stiffness;
+  slid_face_force(law, slide, committed, trial, dissipated);   // sliding on the limit at the equilibrium gap
+  committed = trial;
+  const double before = dissipated;
+  // Lifted in the next step: the step slides on the committed limit ...
+  EXPECT_NEAR(slid_face_force(law, slide, committed, trial, dissipated, lift), high * area, 1e-9 * high * area);
+  EXPECT_NEAR(dissipated - before, 0.5 * (high * high - low * low) / stiffness * area, 1e-9 * high * high * area);
+  // ... and committed there, the state holds the spring at the new limit, sticking, with nothing more dissipated.
+  committed = trial;
+  const double after = dissipated;
+  EXPECT_NEAR(slid_face_force(law, slide, committed, trial, dissipated, lift), low * area, 1e-9 * high * area);
+  EXPECT_NEAR(dissipated, after, 1e-12 * high * area);
 }
