@@ -309,10 +309,10 @@ void check_checkpoint(const Scene& scene, const discretization::NodeSpace& nodes
   if (scene.adhesion.enabled && !starts_relaxed(scene)) {
     const auto& contact = scene.adhesion.model;
     const std::size_t order = contact->quadrature_order();
-    const std::size_t points = nodes.faces.size() * order * order, size = contact->history_size();
-    const auto stored = in->exists(group + "/contact history") ? in->read_doubles(group + "/contact history").size() : 0;
-    // (one value fewer per point: written before the law's last history value was added; that value starts at 0)
-    if (size > 0 && stored != points * size && stored != points * (size - 1))
+    const std::size_t points = nodes.faces.size() * order * order;
+    const std::size_t stored =
+        in->exists(group + "/contact history") ? in->read_doubles(group + "/contact history").size() : 0;
+    if (contact->history_size() > 0 && contact->stored_history_width(stored, points) == 0)
       throw parameters::InputError(
           restart_key(scene) + ": checkpoint '" + label + "' holds no contact history for 'Adhesion/law' = '" +
           scene.adhesion.settings.law + "' with " + std::to_string(order) + " x " + std::to_string(order) +

@@ -8,7 +8,7 @@ import shutil
 from convergence import EQUAL_AREA_SIZE
 from curves import pad_slip, pull_off_summary
 from run_lock import directory_lock
-from study.runs import complete, stopped
+from study.runs import STOPPED_DIRECTORIES, complete, stopped
 from study.scenes import DEPENDS, OVERRIDES, ROOT
 from study.tables import STICTION_RUNS
 
@@ -82,7 +82,7 @@ CARRIED_FILES = ('checkpoints.h5', 'curve.csv', 'scene.xml', 'mesh_summary.csv',
 def carry(work, level, scene, carried):
     """Copies the stopped-run files of the running or stopped <scene> into ARCHIVE/<level>/<scene>.stopped/ when its
     checkpoints file has changed since the last copy (`carried`: file -> modification time copied)."""
-    for suffix in ('.partial', '.incomplete'):
+    for suffix in STOPPED_DIRECTORIES:
         source = os.path.join(work, level, scene + suffix)
         checkpoints = os.path.join(source, 'checkpoints.h5')
         kept = os.path.join(ARCHIVE, level, scene + STOPPED_SUFFIX)

@@ -34,9 +34,12 @@ def started(work, scene):
     return complete(work, scene) or os.path.exists(os.path.join(work, scene + '.incomplete', 'curve.csv'))
 
 
+STOPPED_DIRECTORIES = ('.partial', '.incomplete')   # a killed run's staging directory, a stopped run's
+
+
 def stopped(work, scene):
     """A stopped run of it is there to resume: <scene>.partial/ (killed) or <scene>.incomplete/ (stopped)."""
-    return any(os.path.isdir(os.path.join(work, scene + suffix)) for suffix in ('.partial', '.incomplete'))
+    return any(os.path.isdir(os.path.join(work, scene + suffix)) for suffix in STOPPED_DIRECTORIES)
 
 
 REFUSED_SUFFIX = '.refused'
@@ -49,7 +52,7 @@ def keep_aside(work, scene):
     aside = os.path.join(work, scene + REFUSED_SUFFIX)
     with directory_lock(os.path.join(work, scene)):
         shutil.rmtree(aside, ignore_errors=True)
-        for suffix in ('.partial', '.incomplete'):
+        for suffix in STOPPED_DIRECTORIES:
             if os.path.isdir(os.path.join(work, scene + suffix)):
                 os.replace(os.path.join(work, scene + suffix), aside)
                 break

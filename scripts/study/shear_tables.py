@@ -141,7 +141,8 @@ def mesh_dependence(found_by_level):
         return ''
     markdown = ['### Mesh dependence of the pull-off force [nN]\n',
                 'Points run on more than one mesh level; the change between the two finest levels bounds the error of '
-                'the coarser one. A run that did not detach is marked as in the tables; a run not finished has no change yet.\n',
+                'the coarser one. A run that did not detach is marked as in the tables; a run not finished has no '
+                'change yet.\n',
                 '| law | across | beta | ' + ' | '.join(levels) + ' | change between the two finest |',
                 '|---|---|---|' + '---|' * (len(levels) + 1)]
     for key in shared:

@@ -33,7 +33,7 @@ from study.app import APP, RUN_ENVIRONMENT, copy_restart, launch, memory_estimat
 from study.archive import (archive, archive_ended, archiving, carry, restore, restore_ended,  # noqa: E402
                            restore_stopped)
 from study.progress import progress, step_lines  # noqa: E402
-from study.runs import REFUSED_SUFFIX, checkpoint_copy, complete, keep_aside, stopped  # noqa: E402
+from study.runs import checkpoint_copy, complete, keep_aside, stopped  # noqa: E402
 from study.scenes import DEPENDS, OVERRIDES, parse_override, restart_angle, scene_file  # noqa: E402
 
 

@@ -102,7 +102,8 @@ with tempfile.TemporaryDirectory() as root:
     said = StringIO()
     with redirect_stdout(said):
         status = single_run.run_app(directory, 'coarse', 'rough-z0-4', 1, 'mpiexec')
-    aside = os.path.join(directory, 'rough-z0-4' + single_run.REFUSED_SUFFIX)
+    from study.runs import REFUSED_SUFFIX
+    aside = os.path.join(directory, 'rough-z0-4' + REFUSED_SUFFIX)
     check(status == 0 and not os.path.exists(os.path.join(directory, 'rough-z0-4.incomplete'))
           and open(os.path.join(aside, 'checkpoints.h5')).read() == 'hours of work'
           and open(os.path.join(aside, 'run.log')).read() == 'the stopped run', 'the refused stopped run kept aside')

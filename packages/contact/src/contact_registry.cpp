@@ -72,7 +72,10 @@ std::shared_ptr<const discretization::ContactModel> adhesive_friction(const Adhe
   return std::make_shared<IntegrandContactModel<decltype(integrand)>>(
       integrand, s.quadrature,
       describe(s, ", sliding on the " + limit + " within g_c = " + std::to_string(f.cutoff) + " nm, stick stiffness " +
-                      std::to_string(f.stiffness) + " nN/nm^3" + (f.frozen ? ", variational update on the committed limit" : f.variational ? ", variational update" : "")),
+                      std::to_string(f.stiffness) + " nN/nm^3" +
+                      (f.frozen        ? ", variational update on the committed limit"
+                       : f.variational ? ", variational update"
+                                       : "")),
       s.lennard_jones.work_of_adhesion(), s.skip_distant_faces);
 }
 

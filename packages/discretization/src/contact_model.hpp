@@ -64,6 +64,13 @@ public:
   // A law with state (adhesive friction): the history values per quadrature point, committed by the caller at
   // converged states (DiscreteSystem::commit_contact_history); 0: none.
   virtual int history_size() const { return 0; }
+  // The values per point of a stored history of `stored` values over `points` quadrature points: history_size(), or
+  // one fewer for a history written before the law's last value was added (read with that value 0); 0 for neither.
+  std::size_t stored_history_width(std::size_t stored, std::size_t points) const
+  {
+    const auto size = static_cast<std::size_t>(history_size());
+    return stored == points * size ? size : size > 1 && stored == points * (size - 1) ? size - 1 : 0;
+  }
   // Where such a history keeps the energy dissipated at the point [nN/nm]; -1: it keeps none.
   virtual int dissipated_index() const { return -1; }
   // A traction along the substrate (stiction, friction): the law holds the pad there, so an end face free to move

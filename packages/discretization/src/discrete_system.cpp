@@ -297,11 +297,9 @@ void DiscreteSystem::set_contact_history(const std::vector<double>& all)
   auto& impl = *implementation_;
   const std::size_t per_face = impl.history_per_face();
   if (per_face == 0 && all.empty()) return;
-  const std::size_t size = per_face == 0 ? 0 : impl.options.contact->history_size(), points = per_face / (size ? size : 1);
-  // A history written before the law's last value was added (one value fewer per point) is read with that value 0.
-  const std::size_t given = all.size() == per_face * impl.space.faces.size()                ? size
-                            : size > 1 && all.size() == points * (size - 1) * impl.space.faces.size() ? size - 1
-                                                                                                      : 0;
+  const auto* law = impl.options.contact.get();
+  const std::size_t size = per_face ? law->history_size() : 0, points = size ? per_face / size : 0;
+  const std::size_t given = size ? law->stored_history_width(all.size(), points * impl.space.faces.size()) : 0;
   if (given == 0)
     throw std::runtime_error("a contact history of " + std::to_string(all.size()) + " values given, the system's has " +
                              std::to_string(per_face * impl.space.faces.size()));
