@@ -213,3 +213,56 @@ TEST(FrictionSystem, AnOlderHistoryWithOneValueFewerPerPointIsReadWithThatValueU
   older.pop_back();
   EXPECT_THROW(block.system->set_contact_history(older), std::runtime_error);
 }
+
+namespace {
+
+// The extended Amontons block slid to 1 nm, then lifted while it slides: `cycles` times a lift by 0.2 / cycles nm and
+// a slide by 2 / cycles nm (its sliding limit falls as the gap opens). The energy dissipated by sliding over the
+// lifts and slides, and the work of the reactions less the stored and dissipated energy over them.
+struct LiftedSlide {
+  double dissipated = 0.0, imbalance = 0.0;
+};
+
+LiftedSlide lift_while_sliding(bool frozen, int cycles)
+{
+  SlidingBlock block(contact::AdhesiveFriction::Limit::extended_amontons, frozen);
+  analysis::LoadPath path(*block.model, *block.newton, nullptr, false);
+  analysis::StepParameters steps;
+  steps.initial = steps.maximum = 0.1;
+  const auto move = [&](Master master, double value) {
+    return path.advance(master, value, MasterControl::moving(master), steps, 1.0, {});
+  };
+  EXPECT_FALSE(move(Master::slide, 1.0).has_value());
+  const auto start = path.last();
+  for (int k = 1; k <= cycles; ++k) {
+    EXPECT_FALSE(move(Master::lift, 0.2 * k / cycles).has_value());
+    EXPECT_FALSE(move(Master::slide, 1.0 + 2.0 * k / cycles).has_value());
+  }
+  const auto& end = path.last();
+  LiftedSlide result;
+  result.dissipated = end.sliding - start.sliding;
+  result.imbalance = (end.external_work - start.external_work) -
+                     (end.internal_energy + end.contact_energy - start.internal_energy - start.contact_energy) -
+                     result.dissipated;
+  std::cout << (frozen ? "frozen limit" : "return mapping") << ", " << cycles << " lifts and slides: dissipated "
+            << result.dissipated << " nN nm, work less stored and dissipated " << result.imbalance << " nN nm\n";
+  return result;
+}
+
+}  // namespace
+
+// Where the sliding limit falls under a sliding point, a step on the frozen limit ends with the point's spring above
+// the limit of the state it reaches; the committed state cuts it back to that limit and counts its energy as
+// dissipated, and the next step starts from the reactions of the state before the cut: the work of the reactions
+// then exceeds the energy stored and dissipated by about half the force the cut releases times the next step. A
+// first-order error: it halves with the steps (2.8 % of the dissipation with 20 lifts and slides, 1.4 % with 40).
+// The return mapping, whose step slides on the limit at its end, has the same order, about 15 times smaller.
+TEST(FrictionSystem, TheFrozenLimitsEnergyBalanceUnderAFallingLimitConvergesWithTheSteps)
+{
+  for (const bool frozen : {true, false}) {
+    const auto coarse = lift_while_sliding(frozen, 20), fine = lift_while_sliding(frozen, 40);
+    EXPECT_GT(coarse.imbalance, 0.0);
+    EXPECT_LT(coarse.imbalance, (frozen ? 0.04 : 0.003) * coarse.dissipated);
+    EXPECT_NEAR(coarse.imbalance / fine.imbalance, 2.0, 0.2);
+  }
+}
