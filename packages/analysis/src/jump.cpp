@@ -52,8 +52,10 @@ std::optional<LoadPoint> LoadPath::descend_early(Master controlled, double load,
   state.assign(*x_);
   model_.system().set_master(state, controlled, load);
   const auto outcome = minimizer_.minimize(state);
-  if (!outcome.found) {
-    if (log_) *log_ << "  the descent found no stable state (" << outcome.failure << ")\n";
+  if (!outcome.found || outcome.on_descent_law) {   // an ordinary step ends on an equilibrium of the law's own
+    if (log_)
+      *log_ << "  the descent found no stable state ("
+            << (outcome.found ? "only one of the descent law's" : outcome.failure) << ")\n";
     return std::nullopt;
   }
   auto point = measure(state, outcome.iterations, -1);
@@ -123,7 +125,13 @@ std::optional<Failure> LoadPath::jump(Master controlled, double value, const Cal
     return failure;
   }
   const int iterations = outcome.iterations;
-  accept(*x, iterations, -1, {});
+  if (outcome.on_descent_law) {   // the descent law's equilibrium, committed under it (the next step starts there)
+    const discretization::DescentLawScope descent_law(system);
+    accept(*x, iterations, -1, {});
+    if (log_) *log_ << "  the jump's state is an equilibrium of the energy its descent minimized, committed under it\n";
+  } else {
+    accept(*x, iterations, -1, {});
+  }
   const auto& after = last();
   // (What sliding friction dissipated on the way is counted by LoadPoint::sliding, not again here.)
   const double released = (before.internal_energy + before.contact_energy) -

@@ -132,6 +132,14 @@ bool symmetric_tangent(const Integrand& integrand)
   else return true;
 }
 
+// Whether an integrand names another for the energy descents of jumps (its descent_integrand(), used where
+// descends_on_another_energy() says so).
+template <class Integrand, class = void>
+struct DeclaresDescent : std::false_type {};
+template <class Integrand>
+struct DeclaresDescent<Integrand, std::void_t<decltype(std::declval<const Integrand&>().descent_integrand())>>
+    : std::true_type {};
+
 // Quadrature point (a, b) of a face's order x order Gauss rule: its shape functions, reference position X, anchor A
 // and undeformed area element dA, and its current position for nodal displacements u.
 template <class Surface>

@@ -6,6 +6,7 @@
 #include "contact/contact_face.hpp"
 #include "discretization/contact_model.hpp"
 
+#include <memory>
 #include <string>
 
 namespace spatula::contact {
@@ -162,6 +163,16 @@ public:
   int dissipated_index() const override { return DissipatedIndex<Integrand>::value; }
   bool holds_tangentially() const override { return Tangential<Integrand>::value; }
   bool symmetric() const override { return symmetric_tangent(integrand_); }
+  std::shared_ptr<const ContactModel> descent_law() const override
+  {
+    if constexpr (DeclaresDescent<Integrand>::value) {
+      if (integrand_.descends_on_another_energy())
+        return std::make_shared<IntegrandContactModel<Integrand>>(
+            integrand_.descent_integrand(), order_, description_ + " (its jumps descend on the frozen limit's energy)",
+            work_, skip_distant_);
+    }
+    return nullptr;
+  }
 
   ContactTotals assemble(const ContactFaceViews& faces, const ElementScatter& scatter) const override
   {

@@ -34,6 +34,15 @@ struct AdhesiveFrictionIntegrand {
   static constexpr int dissipated_index = 2;
   static constexpr bool tangential = true;   // holds the pad along the substrate
   KOKKOS_INLINE_FUNCTION bool symmetric_tangent() const { return friction.variational; }
+  // The integrand a jump's energy descent minimizes: the return mapping's gradient is not that of an energy (nor its
+  // tangent symmetric), so its descents take the frozen limit's, on the same history; the variational updates their own.
+  bool descends_on_another_energy() const { return !friction.variational; }
+  AdhesiveFrictionIntegrand descent_integrand() const
+  {
+    AdhesiveFrictionIntegrand frozen = *this;
+    frozen.friction.variational = frozen.friction.frozen = true;
+    return frozen;
+  }
   KOKKOS_INLINE_FUNCTION static double dissipated(const double* history) { return history[dissipated_index]; }
 
   KOKKOS_INLINE_FUNCTION double far_bound(const double x[3]) const { return normal.far_bound(x); }

@@ -32,7 +32,9 @@ void declare_friction(Teuchos::ParameterList& adhesion)
                              "eps_T, the elastic stick's tangential stiffness per unit area [nN/nm^3]",
                              Range::positive());
   parameters::declare_string(friction, "update", d.variational ? "variational" : "return mapping",
-                             "return mapping: the sliding law as published (its tangent not symmetric); variational: "
+                             "return mapping: the sliding law as published (its tangent not symmetric; a jump's "
+                             "descent minimizes the frozen limit's energy, Newton confirming its state with the "
+                             "return mapping, or where it cannot with the frozen limit); variational: "
                              "each step minimizes its incremental energy (the normal traction gains tau'(g) times the "
                              "step's slip, which vanishes with the step; a symmetric tangent, an energy the line "
                              "search and the jumps' descents can use); frozen limit: the same with each step sliding "

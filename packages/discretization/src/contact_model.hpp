@@ -78,6 +78,9 @@ public:
   virtual bool holds_tangentially() const { return false; }
   // false: the tangent is not symmetric (a sliding limit that depends on the gap); the linear solver factors LU.
   virtual bool symmetric() const { return true; }
+  // The law a jump's energy descent assembles instead of this one, on the same history (a law whose gradient is not
+  // that of an energy: the return mapping of adhesive friction); null: this one.
+  virtual std::shared_ptr<const ContactModel> descent_law() const { return nullptr; }
   virtual ContactTotals assemble(const ContactFaceViews& faces, const ElementScatter& scatter) const = 0;
   // This rank's sums of face_gap_changes (contact_face.hpp) from the state of `from` to that of `to` (the
   // scatters' displacements), a gap change above `fraction` r0 counting as large: crossing and large points, the

@@ -53,6 +53,7 @@ struct DiscreteSystem::Implementation : SystemTopology {
   Teuchos::RCP<Vector> other_state;           // a second one, for comparing two states (made when first needed)
   DeviceView<int[1]> dropped_entries;   // ElementScatter::dropped (made once Kokkos is up, with the views)
   DeviceView<double*> committed_history;   // contact_faces.history, writable (a contact law with state)
+  std::shared_ptr<const ContactModel> law, descent_law;   // options.contact is one of them (use_descent_law)
 
   Implementation(const mesh::HexMesh& mesh_, const mesh::Partition& partition, const Constraints& constraints,
                  const SolidParameters& solid_, Teuchos::RCP<const Teuchos::Comm<int>> comm_,
@@ -64,6 +65,8 @@ struct DiscreteSystem::Implementation : SystemTopology {
         coupling(Teuchos::rcp(new FEMultiVector(owned, graph->getImporter(), master_count))),
         state(Teuchos::rcp(new Vector(overlap))), dropped_entries("dropped tangent entries")
   {
+    law = options.contact;
+    if (law) descent_law = law->descent_law();
     if (history_per_face() > 0) {   // every point starts from zero: the undeformed pad
       const std::size_t size = contact_faces.count * history_per_face();
       committed_history = DeviceView<double*>("contact history", size);
@@ -400,5 +403,14 @@ const SystemTopology& DiscreteSystem::topology() const { return *implementation_
 const SolidParameters& DiscreteSystem::solid() const { return implementation_->solid; }
 const SolidModel& DiscreteSystem::solid_model() const { return *implementation_->solid_model; }
 const ContactModel* DiscreteSystem::contact_model() const { return implementation_->options.contact.get(); }
+
+bool DiscreteSystem::has_descent_law() const { return implementation_->descent_law != nullptr; }
+
+void DiscreteSystem::use_descent_law(bool on)
+{
+  auto& impl = *implementation_;
+  if (!impl.law) return;
+  impl.options.contact = on && impl.descent_law ? impl.descent_law : impl.law;
+}
 
 }  // namespace spatula::discretization

@@ -119,10 +119,26 @@ public:
   const SolidParameters& solid() const;
   const SolidModel& solid_model() const;   // the law 'Material/law' names
   const ContactModel* contact_model() const;   // the adhesion law (nullptr: no contact)
+  // While true, the contact faces are assembled with the law's descent law (ContactModel::descent_law), where it
+  // has one, on the same history: what a jump's energy descent minimizes. contact_model() then returns it.
+  void use_descent_law(bool on);
+  bool has_descent_law() const;
 
 private:
   struct Implementation;
   std::unique_ptr<Implementation> implementation_;
+};
+
+// The contact law's descent law assembled while it lives (DiscreteSystem::use_descent_law), the law's own after.
+class DescentLawScope {
+public:
+  explicit DescentLawScope(DiscreteSystem& system) : system_(system) { system_.use_descent_law(true); }
+  ~DescentLawScope() { system_.use_descent_law(false); }
+  DescentLawScope(const DescentLawScope&) = delete;
+  DescentLawScope& operator=(const DescentLawScope&) = delete;
+
+private:
+  DiscreteSystem& system_;
 };
 
 }  // namespace spatula::discretization

@@ -201,8 +201,12 @@ MinimizerResult EnergyMinimizer::minimize(discretization::Vector& x, const Desce
   auto confirmed = model_.system().create_vector();
   MinimizerResult result;
   for (int confirmations = 1;; ++confirmations) {
-    const auto error = uses_trust_region() ? descend_by_trust_region(x, d, small_gradient, watch)
-                           : descend_to_small_gradient(x, d, small_gradient, watch);
+    std::optional<std::string> error;
+    {
+      const discretization::DescentLawScope descent_law(model_.system());
+      error = uses_trust_region() ? descend_by_trust_region(x, d, small_gradient, watch)
+                                  : descend_to_small_gradient(x, d, small_gradient, watch);
+    }
     result.indefinite_tangents = d.indefinite;
     result.accepted_steps = d.accepted;
     if (error) {
@@ -223,7 +227,17 @@ MinimizerResult EnergyMinimizer::minimize(discretization::Vector& x, const Desce
       return result;
     }
     confirmed->assign(x);
-    const auto plain = confirm_.solve(*confirmed, nullptr, true);   // the give-up rules: a hopeless try ends soon
+    // The give-up rules, a hopeless try ending soon, where the descent minimized the law's own energy; from the
+    // minimum of its descent law's, Newton starts off its own equilibrium and gets all its iterations, and where it
+    // does not converge there, the descent law's equilibrium is the state found (MinimizerResult::on_descent_law).
+    auto& system = model_.system();
+    auto plain = confirm_.solve(*confirmed, nullptr, !system.has_descent_law());
+    if (!plain.converged && system.has_descent_law()) {
+      const discretization::DescentLawScope descent_law(system);
+      confirmed->assign(x);
+      plain = confirm_.solve(*confirmed, nullptr, true);
+      result.on_descent_law = plain.converged;
+    }
     if (plain.converged) {
       x.assign(*confirmed);
       result.found = true;

@@ -59,6 +59,9 @@ struct MinimizerResult {
   bool can_go_on = false;    // not found within the iteration limit: more iterations from the last state may find it
   int indefinite_tangents = 0;   // iterations whose shifted tangent was indefinite (the shift raised)
   int accepted_steps = 0;        // iterations that lowered Pi
+  // Found, an equilibrium of the contact law's descent law (discretization::DiscreteSystem::use_descent_law), not of
+  // the law's own: its history is to be committed under the descent law.
+  bool on_descent_law = false;
 };
 
 class EnergyMinimizer {
