@@ -69,5 +69,7 @@ with tempfile.TemporaryDirectory() as root:
                   f"{ends[0]['M_y_nNnm']} against {ends[1]['theta_y_deg']}, {ends[1]['M_y_nNnm']})")
     finally:
         subprocess.run([CLUSTER, 'stop', cluster])
+        # A job step that scancel left behind (snakemake's, waiting for files in this directory) goes with it.
+        subprocess.run(['pkill', '-KILL', '-f', root])
 
 finish('workflow under Slurm: a cancelled study resumed to the uninterrupted curves')
