@@ -10,9 +10,10 @@
 //
 // The energy density is phi(g) plus the friction's incremental potential psi with the sliding limit tau = tau(g),
 //   stick: eps_T |s - a|^2 / 2,   slip: tau |s - a| - tau^2 / (2 eps_T),
-// whose derivative along s is the traction t. The return mapping (AdhesiveFriction::variational false) leaves out its derivative
-// along g, tau'(g) (|s - a| - tau / eps_T) in slip: the gradient is not that of the energy and the tangent is not
-// symmetric. The variational update (true: Ortiz and Stainier's variational constitutive updates) takes
+// whose derivative along s is the traction t. The return mapping (AdhesiveFriction::variational false) leaves out its
+// derivative along g, tau'(g) (|s - a| - tau / eps_T) in slip: the gradient is not that of the energy and the tangent
+// is not symmetric; it charges the slip |s - a| - tau / eps_T at (tau_0 + tau) / 2 instead of tau, tau_0 the limit at
+// the committed state (in the energy and the dissipation alike: the trapezoidal rule of the work of the reactions). The variational update (true: Ortiz and Stainier's variational constitutive updates) takes
 // the whole derivative of psi: the normal traction gains tau' times the step's slip (which vanishes with the step),
 // the energy is the step's potential and the tangent is symmetric (tau'' included), so the energy line search, the
 // jumps' descents and LDL^T factors see a consistent problem. With the extended Amontons limit its normal term
@@ -76,7 +77,8 @@ struct AdhesiveFrictionIntegrand {
     history.dissipated = in[2];
     if (in[3] > 0.0) {
       history.limit = in[3] - 1.0;
-    } else if (friction.frozen) {   // the anchors' state is the committed one (the undeformed or the re-anchored pad)
+    } else if (friction.frozen || !friction.variational) {   // the anchors' state is the committed one (the undeformed
+                                                               // or the re-anchored pad)
       double tau, dtau, d2tau;
       friction.sliding_limit(normal.gap(A), tau, dtau, d2tau);
       history.limit = tau;
@@ -97,7 +99,12 @@ struct AdhesiveFrictionIntegrand {
     }
     const double tau = response.limit, stiffness = friction.stiffness;
     const double travel = ::sqrt((s[0] - in[0]) * (s[0] - in[0]) + (s[1] - in[1]) * (s[1] - in[1]));
-    phi += response.sliding ? tau * travel - 0.5 * tau * tau / stiffness : 0.5 * stiffness * travel * travel;
+    // The step's slip |a - a_in| = travel - tau / eps_T is charged at the limit of its end state (the law's) by the
+    // variational updates, whose energy is the step's potential; the return mapping charges it at the mean of the
+    // limits at the step's two states, the trapezoidal rule the work of the reactions is integrated by.
+    const double slip = travel - tau / stiffness, charged = friction.variational ? tau : 0.5 * (history.limit + tau);
+    if (response.sliding && !friction.variational) out[2] = in[2] + charged * slip;
+    phi += response.sliding ? charged * slip + 0.5 * tau * tau / stiffness : 0.5 * stiffness * travel * travel;
     for (int i = 0; i < 2; ++i) gradient[i] += response.traction[i];
     if (H)
       for (int i = 0; i < 2; ++i) {
@@ -105,7 +112,7 @@ struct AdhesiveFrictionIntegrand {
         H[i][2] += response.d_gap[i];
       }
     if (friction.variational && response.sliding) {   // d psi / d g = tau' (|s - a| - tau / eps_T)
-      const double slope = response.limit_slope, slip = travel - tau / stiffness;
+      const double slope = response.limit_slope;
       gradient[2] += slope * slip;
       if (H) {
         for (int i = 0; i < 2; ++i) H[2][i] += response.d_gap[i];

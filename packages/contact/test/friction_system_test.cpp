@@ -257,14 +257,20 @@ LiftedSlide lift_while_sliding(bool frozen, int cycles)
 // dissipated, and the next step starts from the reactions of the state before the cut: the work of the reactions
 // then exceeds the energy stored and dissipated by about half the force the cut releases times the next step. A
 // first-order error: it halves with the steps (2.8 % of the dissipation with 20 lifts and slides, 1.4 % with 40).
-// The return mapping, whose step slides on the limit at its end, has the same order, about 15 times smaller.
-TEST(FrictionSystem, TheFrozenLimitsEnergyBalanceUnderAFallingLimitConvergesWithTheSteps)
+// The return mapping slides each step on the limit at its end and charges its slip at the mean of the limits at the
+// step's two states, as the work is integrated (trapezoidal rule): 0.01 % and 0.003 %, a second-order error.
+TEST(FrictionSystem, UnderAFallingLimitTheFrozenLimitsBalanceConvergesAtFirstOrderTheReturnMappingsAtSecond)
 {
   for (const bool frozen : {true, false}) {
     const auto coarse = lift_while_sliding(frozen, 20), fine = lift_while_sliding(frozen, 40);
-    EXPECT_GT(coarse.imbalance, 0.0);
-    EXPECT_LT(coarse.imbalance, (frozen ? 0.04 : 0.003) * coarse.dissipated);
-    EXPECT_NEAR(coarse.imbalance / fine.imbalance, 2.0, 0.2);
+    if (frozen) {
+      EXPECT_GT(coarse.imbalance, 0.0);
+      EXPECT_LT(coarse.imbalance, 0.04 * coarse.dissipated);
+      EXPECT_NEAR(coarse.imbalance / fine.imbalance, 2.0, 0.2);
+    } else {
+      EXPECT_LT(std::abs(coarse.imbalance), 2e-4 * coarse.dissipated);
+      EXPECT_GT(std::abs(coarse.imbalance / fine.imbalance), 3.0);
+    }
   }
 }
 
