@@ -13,8 +13,9 @@
 // whose derivative along s is the traction t. The return mapping (AdhesiveFriction::variational false) leaves out its
 // derivative along g, tau'(g) (|s - a| - tau / eps_T) in slip: the gradient is not that of the energy and the tangent
 // is not symmetric; it charges the slip |s - a| - tau / eps_T at (tau_0 + tau) / 2 instead of tau, tau_0 the limit at
-// the committed state (in the energy and the dissipation alike: the trapezoidal rule of the work of the reactions). The variational update (true: Ortiz and Stainier's variational constitutive updates) takes
-// the whole derivative of psi: the normal traction gains tau' times the step's slip (which vanishes with the step),
+// the committed state (in the energy and the dissipation alike: the trapezoidal rule of the work of the reactions).
+// The variational update (true: Ortiz and Stainier's variational constitutive updates) takes the whole derivative of
+// psi: the normal traction gains tau' times the step's slip (which vanishes with the step),
 // the energy is the step's potential and the tangent is symmetric (tau'' included), so the energy line search, the
 // jumps' descents and LDL^T factors see a consistent problem. With the extended Amontons limit its normal term
 // tau' times the slip pulls a sliding point towards the strongest attraction (docs/adhesion.md). The frozen update
@@ -36,7 +37,8 @@ struct AdhesiveFrictionIntegrand {
   static constexpr bool tangential = true;   // holds the pad along the substrate
   KOKKOS_INLINE_FUNCTION bool symmetric_tangent() const { return friction.variational; }
   // The integrand a jump's energy descent minimizes: the return mapping's gradient is not that of an energy (nor its
-  // tangent symmetric), so its descents take the frozen limit's, on the same history; the variational updates their own.
+  // tangent symmetric), so its descents take the frozen limit's, on the same history; the variational updates their
+  // own.
   bool descends_on_another_energy() const { return !friction.variational; }
   AdhesiveFrictionIntegrand descent_integrand() const
   {
