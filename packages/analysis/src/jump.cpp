@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <optional>
 #include <ostream>
 #include <sstream>
 #include <string>
@@ -125,13 +126,13 @@ std::optional<Failure> LoadPath::jump(Master controlled, double value, const Cal
     return failure;
   }
   const int iterations = outcome.iterations;
-  if (outcome.on_descent_law) {   // the descent law's equilibrium, committed under it (the next step starts there)
-    const discretization::DescentLawScope descent_law(system);
-    accept(*x, iterations, -1, {});
-    if (log_) *log_ << "  the jump's state is an equilibrium of the energy its descent minimized, committed under it\n";
-  } else {
+  {
+    std::optional<discretization::DescentLawScope> descent_law;   // the descent law's equilibrium is committed under
+    if (outcome.on_descent_law) descent_law.emplace(system);        // it (the next step starts there)
     accept(*x, iterations, -1, {});
   }
+  if (outcome.on_descent_law && log_)
+    *log_ << "  the jump's state is an equilibrium of the energy its descent minimized, committed under it\n";
   const auto& after = last();
   // (What sliding friction dissipated on the way is counted by LoadPoint::sliding, not again here.)
   const double released = (before.internal_energy + before.contact_energy) -

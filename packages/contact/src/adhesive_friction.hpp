@@ -8,7 +8,10 @@
 //   trial traction  t* = eps_T (s - a),    s: the point's tangential position, a: its sliding anchor (the history),
 //   stick (|t*| <= tau(g)):  t = t*,                          a unchanged,
 //   slip  (|t*| >  tau(g)):  t = tau(g) n,  n = t* / |t*|,     a = s - t / eps_T,
-// and the energy dissipated in the slip, tau(g) |a_new - a_old| (the elastic part eps_T |s - a|^2 / 2 is stored).
+// and the energy dissipated in the slip, |a_new - a_old| charged at a limit (the elastic part eps_T |s - a|^2 / 2 is
+// stored): at tau(g) under the variational updates (whose energy is the step's potential), at the mean
+// (tau_0 + tau(g)) / 2 under the return mapping, tau_0 the limit at the committed state (the trapezoidal rule the
+// work of the reactions is integrated by: its energy balance is second order in the step).
 // The history also keeps tau at its state; with `frozen` a step slides on that limit of the committed state instead
 // of tau(g) (an explicit limit: the step's energy does not depend on g through it).
 // The sliding limits (`Limit`):
@@ -40,6 +43,7 @@ struct FrictionResponse {
   double d_gap[2] = {0.0, 0.0};                          // d t_i / d g
   bool sliding = false;
   double limit = 0.0;                // tau(g)
+  double charged = 0.0;              // the limit the step's slip is charged at (see above)
   double limit_slope = 0.0, limit_curvature = 0.0;   // tau'(g), tau''(g)
   FrictionHistory trial;             // the history after this state (commit it at a converged state)
 };
@@ -110,6 +114,7 @@ struct AdhesiveFriction {
     }
     out.limit = tau;
     out.limit_slope = dtau;
+    out.charged = variational ? tau : 0.5 * (in.limit + tau);
     const double trial[2] = {stiffness * (s[0] - in.anchor[0]), stiffness * (s[1] - in.anchor[1])};
     const double size = ::sqrt(trial[0] * trial[0] + trial[1] * trial[1]);
     if (size <= tau) {   // stick
@@ -130,7 +135,7 @@ struct AdhesiveFriction {
       const double step = out.trial.anchor[i] - in.anchor[i];
       slipped += step * step;
     }
-    out.trial.dissipated = in.dissipated + tau * ::sqrt(slipped);
+    out.trial.dissipated = in.dissipated + out.charged * ::sqrt(slipped);
     return out;
   }
 };

@@ -12,8 +12,8 @@
 //   stick: eps_T |s - a|^2 / 2,   slip: tau |s - a| - tau^2 / (2 eps_T),
 // whose derivative along s is the traction t. The return mapping (AdhesiveFriction::variational false) leaves out its
 // derivative along g, tau'(g) (|s - a| - tau / eps_T) in slip: the gradient is not that of the energy and the tangent
-// is not symmetric; it charges the slip |s - a| - tau / eps_T at (tau_0 + tau) / 2 instead of tau, tau_0 the limit at
-// the committed state (in the energy and the dissipation alike: the trapezoidal rule of the work of the reactions).
+// is not symmetric; its energy charges the slip |s - a| - tau / eps_T at the limit the law's dissipation does,
+// (tau_0 + tau) / 2 instead of tau, tau_0 the limit at the committed state (adhesive_friction.hpp).
 // The variational update (true: Ortiz and Stainier's variational constitutive updates) takes the whole derivative of
 // psi: the normal traction gains tau' times the step's slip (which vanishes with the step),
 // the energy is the step's potential and the tangent is symmetric (tau'' included), so the energy line search, the
@@ -101,12 +101,8 @@ struct AdhesiveFrictionIntegrand {
     }
     const double tau = response.limit, stiffness = friction.stiffness;
     const double travel = ::sqrt((s[0] - in[0]) * (s[0] - in[0]) + (s[1] - in[1]) * (s[1] - in[1]));
-    // The step's slip |a - a_in| = travel - tau / eps_T is charged at the limit of its end state (the law's) by the
-    // variational updates, whose energy is the step's potential; the return mapping charges it at the mean of the
-    // limits at the step's two states, the trapezoidal rule the work of the reactions is integrated by.
-    const double slip = travel - tau / stiffness, charged = friction.variational ? tau : 0.5 * (history.limit + tau);
-    if (response.sliding && !friction.variational) out[2] = in[2] + charged * slip;
-    phi += response.sliding ? charged * slip + 0.5 * tau * tau / stiffness : 0.5 * stiffness * travel * travel;
+    const double slip = travel - tau / stiffness;   // |a - a_in|, charged at the law's limit for it
+    phi += response.sliding ? response.charged * slip + 0.5 * tau * tau / stiffness : 0.5 * stiffness * travel * travel;
     for (int i = 0; i < 2; ++i) gradient[i] += response.traction[i];
     if (H)
       for (int i = 0; i < 2; ++i) {

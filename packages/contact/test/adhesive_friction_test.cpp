@@ -1,5 +1,6 @@
 // Adhesive friction at one point (adhesive_friction.hpp): stick and slip over a sweep of gaps in compression and
-// tension with the traction on the sliding limit and the dissipation equal to limit x slip; the sliding limits'
+// tension with the traction on the sliding limit and the dissipation equal to limit x slip (the return mapping charges
+// it at the mean of the committed and the end state's limits, the variational update at the end's); the sliding limits'
 // values (extended Amontons zero at the strongest attraction, mu (T_n + t_max) elsewhere; off beyond the cut-off);
 // the consistent tangent d t / d s and d t / d g against finite differences of the return mapping, in stick and in
 // slip; and Newton on one point driven to a sliding state converging quadratically.
@@ -69,7 +70,8 @@ TEST(AdhesiveFriction, StickThenSlipOnTheLimitWithItsDissipation)
       f.sliding_limit(g, tau, dtau, d2tau);
       const double onset = tau / f.stiffness;   // the travel at which slip begins
       const double direction[2] = {0.6, -0.8};
-      FrictionHistory start;
+      FrictionHistory start;   // committed at this gap: the return mapping charges the slip at tau
+      start.limit = tau;
       const double below[2] = {0.5 * onset * direction[0], 0.5 * onset * direction[1]};
       const auto stick = f.evaluate(g, below, start);
       EXPECT_FALSE(stick.sliding && tau > 0.0) << "gap " << g;
@@ -88,6 +90,14 @@ TEST(AdhesiveFriction, StickThenSlipOnTheLimitWithItsDissipation)
       const double slipped = std::hypot(slip.trial.anchor[0], slip.trial.anchor[1]);
       EXPECT_NEAR(slipped, travel - onset, 1e-12) << "gap " << g;
       EXPECT_NEAR(slip.trial.dissipated, tau * (travel - onset), 1e-13) << "gap " << g;
+      // Committed at a limit twice this one: the return mapping charges the slip at the mean, 1.5 tau; the
+      // variational update at the end state's, tau.
+      FrictionHistory stronger = start;
+      stronger.limit = 2.0 * tau;
+      auto variational = f;
+      variational.variational = true;
+      EXPECT_NEAR(f.evaluate(g, beyond, stronger).trial.dissipated, 1.5 * tau * (travel - onset), 1e-13) << g;
+      EXPECT_NEAR(variational.evaluate(g, beyond, stronger).trial.dissipated, tau * (travel - onset), 1e-13) << g;
       // From the slid state, moving back by less than 2 onsets sticks again (the anchor holds).
       const double back[2] = {beyond[0] - onset * direction[0], beyond[1] - onset * direction[1]};
       const auto again = f.evaluate(g, back, slip.trial);
