@@ -313,8 +313,11 @@ std::optional<Stop> Run::finish(std::optional<analysis::Failure> failure, int in
            << " nN (" << stage().name << "); beyond it no state holds the load\n";
     failure.reset();
   }
-  // No equilibrium beyond a state where most of the pad has let go: that is the detachment.
-  if (!interrupted_by && failure && !out_of_memory_ && options_.contact && released_fraction(path_.last()) > 0.5) {
+  // No equilibrium beyond a state where most of the pad has let go, or a jump whose descent let go of the substrate
+  // on the way (its last state holds under 1 % of the adhesion energy: a free end face's pad off the substrate has
+  // no stable state to find): that is the detachment.
+  const bool let_go = failure && (released_fraction(path_.last()) > 0.5 || failure->adhesion_kept < 0.01);
+  if (!interrupted_by && failure && !out_of_memory_ && options_.contact && let_go) {
     if (root_)
       out_ << "detachment: no equilibrium beyond " << stage().name << " = " << failure->load << " ("
            << failure->reason << ")\n";

@@ -123,6 +123,7 @@ std::optional<Failure> LoadPath::jump(Master controlled, double value, const Cal
     failure.step = next_step();
     failure.load = value;
     failure.reason = reason.str();
+    failure.adhesion_kept = kept;
     return failure;
   }
   const int iterations = outcome.iterations;
