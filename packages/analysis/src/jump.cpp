@@ -119,11 +119,13 @@ std::optional<Failure> LoadPath::jump(Master controlled, double value, const Cal
     if (slip.adhering_area > 0.0)
       reason << ", its adhering part slid " << std::fixed << std::setprecision(1) << slip.mean_slip
              << " nm along the substrate (mean)";
+    else
+      reason << ", no contact point within the gap of the strongest attraction";
     Failure failure;
     failure.step = next_step();
     failure.load = value;
     failure.reason = reason.str();
-    failure.adhesion_kept = kept;
+    failure.let_go = slip.adhering_area == 0.0;
     return failure;
   }
   const int iterations = outcome.iterations;

@@ -60,9 +60,9 @@ struct Failure {
   // A force-controlled path (advance_force) found no equilibrium at a larger force: the largest force the face
   // carries on this branch (under a dead load the limit point is not passed: beyond it no state holds the load).
   bool largest_force = false;
-  // A jump that found no stable state: the share of the adhesion energy its descent's last state still holds (1
-  // otherwise). Near zero: the pad had let go of the substrate on the way.
-  double adhesion_kept = 1.0;
+  // A jump that found no stable state, whose descent's last state has no contact point within the gap of the
+  // strongest attraction: the pad had let go of the substrate on the way.
+  bool let_go = false;
 };
 
 class LoadPath {

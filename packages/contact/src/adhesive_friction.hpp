@@ -72,8 +72,8 @@ struct AdhesiveFriction {
       c = dc = d2c = 0.0;
       return;
     }
-    const double t = (g - cutoff) / width;
-    c = 1.0 - t * t * t * (10.0 - 15.0 * t + 6.0 * t * t);
+    const double t = (g - cutoff) / width, u = 1.0 - t;
+    c = u * u * u * (1.0 + 3.0 * t + 6.0 * t * t);   // 1 - t^3 (10 - 15 t + 6 t^2), never below zero near t = 1
     dc = -30.0 * t * t * (1.0 - t) * (1.0 - t) / width;
     d2c = -60.0 * t * (1.0 - t) * (1.0 - 2.0 * t) / (width * width);
   }
@@ -117,7 +117,7 @@ struct AdhesiveFriction {
     out.charged = variational ? tau : 0.5 * (in.limit + tau);
     const double trial[2] = {stiffness * (s[0] - in.anchor[0]), stiffness * (s[1] - in.anchor[1])};
     const double size = ::sqrt(trial[0] * trial[0] + trial[1] * trial[1]);
-    if (size <= tau) {   // stick
+    if (size <= tau || size == 0.0) {   // stick (a point on its anchor sticks, whatever its limit)
       for (int i = 0; i < 2; ++i) {
         out.traction[i] = trial[i];
         out.d_position[i][i] = stiffness;

@@ -106,6 +106,30 @@ TEST(AdhesiveFriction, StickThenSlipOnTheLimitWithItsDissipation)
   }
 }
 
+// At the end of the cut-off's fade (1.25 g_c less one ulp, where 1 - t^3 (10 - 15 t + 6 t^2) rounds below zero) the
+// limit is not negative, and a point on its anchor sticks: no 0/0 direction in its traction, anchor or dissipation.
+TEST(AdhesiveFriction, AtTheEndOfTheFadeThePointOnItsAnchorSticksWithFiniteValues)
+{
+  for (const auto& f : {amontons(), constant()}) {
+    const double g = std::nextafter(1.25 * f.cutoff, 0.0);
+    double tau, dtau, d2tau;
+    f.sliding_limit(g, tau, dtau, d2tau);
+    EXPECT_GE(tau, 0.0);
+    EXPECT_LT(tau, 1e-12);
+    FrictionHistory start;
+    start.anchor[0] = 0.3;
+    start.anchor[1] = -0.2;
+    start.limit = tau;
+    const auto r = f.evaluate(g, start.anchor, start);
+    EXPECT_FALSE(r.sliding);
+    for (int i = 0; i < 2; ++i) {
+      EXPECT_EQ(r.traction[i], 0.0);
+      EXPECT_EQ(r.trial.anchor[i], start.anchor[i]);
+    }
+    EXPECT_EQ(r.trial.dissipated, 0.0);
+  }
+}
+
 // d t / d s and d t / d g against central differences of the return mapping (same history), in stick and in slip.
 TEST(AdhesiveFriction, ConsistentTangentMatchesFiniteDifferences)
 {
