@@ -37,6 +37,7 @@ with tempfile.TemporaryDirectory() as work:
         check(parameter(text, 'law') == ('string', LAWS[law][0]), f'{scene}: law {parameter(text, "law")}')
         if LAWS[law][1]:
             check(parameter(text, 'sliding limit') == ('string', LAWS[law][1]), f'{scene}: sliding limit')
+            check(parameter(text, 'update') == ('string', 'return mapping'), f'{scene}: update {parameter(text, "update")}')
         check(parameter(text, 'pull angle') == ('double', str(beta)), f'{scene}: pull angle')
         check(parameter(text, 'free slide during lift') == ('bool', 'true' if constraint == 'free' else 'false'),
               f'{scene}: free slide')
