@@ -314,10 +314,9 @@ std::optional<Stop> Run::finish(std::optional<analysis::Failure> failure, int in
     failure.reset();
   }
   // No equilibrium beyond a state where most of the pad has let go, or a jump whose descent let go of the substrate
-  // on the way (no contact point of its last state within the gap of the strongest attraction; a free end face's
-  // pad off the substrate has no stable state for it to find): that is the detachment.
-  const bool let_go = failure && (released_fraction(path_.last()) > 0.5 || failure->let_go);
-  if (!interrupted_by && failure && !out_of_memory_ && options_.contact && let_go) {
+  // on the way (no contact point of its last state within the gap of the strongest attraction): the detachment.
+  if (!interrupted_by && failure && !out_of_memory_ && options_.contact &&
+      (released_fraction(path_.last()) > 0.5 || failure->let_go)) {
     if (root_)
       out_ << "detachment: no equilibrium beyond " << stage().name << " = " << failure->load << " ("
            << failure->reason << ")\n";

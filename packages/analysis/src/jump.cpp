@@ -113,10 +113,11 @@ std::optional<Failure> LoadPath::jump(Master controlled, double value, const Cal
     const auto last = system.evaluate(*x, nullptr, false);
     const double kept = before.contact_energy != 0.0 ? last.contact_energy / before.contact_energy : 1.0;
     const auto slip = system.contact_gap_changes(*x_, *x, 1.0);
+    const bool let_go = slip.adhering_area == 0.0;
     std::ostringstream reason;
     reason << "jump past the instability failed: " << outcome.failure << "; the descent's last state kept "
            << std::lround(100.0 * kept) << " % of the adhesion energy";
-    if (slip.adhering_area > 0.0)
+    if (!let_go)
       reason << ", its adhering part slid " << std::fixed << std::setprecision(1) << slip.mean_slip
              << " nm along the substrate (mean)";
     else
@@ -125,7 +126,7 @@ std::optional<Failure> LoadPath::jump(Master controlled, double value, const Cal
     failure.step = next_step();
     failure.load = value;
     failure.reason = reason.str();
-    failure.let_go = slip.adhering_area == 0.0;
+    failure.let_go = let_go;
     return failure;
   }
   const int iterations = outcome.iterations;

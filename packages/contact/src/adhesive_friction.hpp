@@ -74,8 +74,8 @@ struct AdhesiveFriction {
     }
     const double t = (g - cutoff) / width, u = 1.0 - t;
     c = u * u * u * (1.0 + 3.0 * t + 6.0 * t * t);   // 1 - t^3 (10 - 15 t + 6 t^2), never below zero near t = 1
-    dc = -30.0 * t * t * (1.0 - t) * (1.0 - t) / width;
-    d2c = -60.0 * t * (1.0 - t) * (1.0 - 2.0 * t) / (width * width);
+    dc = -30.0 * t * t * u * u / width;
+    d2c = -60.0 * t * u * (1.0 - 2.0 * t) / (width * width);
   }
 
   // tau(g), tau'(g) and tau''(g).
